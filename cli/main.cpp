@@ -1,0 +1,228 @@
+// The `mcquad` command: subcommands over the library's pipeline stages.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "cells/cell_tree.h"
+#include "core/errors.h"
+#include "generate/shapes.h"
+#include "io/file_utils.h"
+#include "io/mesh_io.h"
+#include "io/point_cloud_io.h"
+#include "io/skeleton_io.h"
+#include "metrics/mesh_metrics.h"
+#include "pipeline/fit.h"
+#include "skeleton/skeleton_graph.h"
+#ifdef MCQUAD_WITH_OPENCL
+#include "opencl/device_selection.h"
+#endif
+
+namespace {
+
+using namespace mcquad;
+
+//! Fails early, before hours of work, when an output cannot be written.
+void check_output_path(const std::string& path, const std::vector<std::string>& extensions) {
+  std::string ext = file_extension(path);
+  if (std::find(extensions.begin(), extensions.end(), ext) == extensions.end())
+    throw OutputError(path + ": unknown extension '." + ext + "'");
+  std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
+    throw OutputError(path + ": cannot write: directory " + dir.string() + " does not exist");
+}
+
+struct FitCommand {
+  std::string points, skeleton, output, report, backend = "auto", ends = "auto", stage = "refined";
+  FitOptions options;
+  double alpha_degrees = 10.0;
+
+  void add_options(CLI::App* app, bool evolution) {
+    app->add_option("POINTS", points, "point cloud (.ply, .xyz, .txt, .csv, .obj, .off)")->required();
+    app->add_option("SKELETON", skeleton, "skeleton (.obj with v/l lines, or CGAL polylines .cgal/.polylines/.txt)")->required();
+    app->add_option("-o,--output", output, "output mesh (.obj, .off, .ply, .om)")->required();
+    app->add_option("--report", report, "write a JSON report here");
+    auto& init = options.initial;
+    app->add_option("--ends", ends, "ends: auto (decided from the cloud), open or capped")
+        ->check(CLI::IsMember({"auto", "open", "capped"}))->capture_default_str();
+    app->add_option("--start-fraction", init.start_fraction, "initial mesh radius as a fraction of the local cloud radius")
+        ->check(CLI::Range(0.05, 0.95))->capture_default_str();
+    app->add_option("--resolution", init.resolution, "target edge length of the refined mesh (0 = 32 vertices around a tube)")
+        ->check(CLI::NonNegativeNumber)->capture_default_str();
+    app->add_option("--target-vertices", init.target_vertices, "refine until at least this many vertices (0 = off)")
+        ->capture_default_str();
+    if (!evolution) {
+      app->add_option("--stage", stage, "stop after: blocks, extruded or refined")
+          ->check(CLI::IsMember({"blocks", "extruded", "refined"}))->capture_default_str();
+      return;
+    }
+    auto& e = options.evolution;
+    app->add_option("--backend", backend, "auto (OpenCL if a device exists), serial or opencl")
+        ->check(CLI::IsMember({"auto", "serial", "opencl"}))->capture_default_str();
+    app->add_option("--device", options.device, "OpenCL device index or name (default: $MCQUAD_DEVICE, else first GPU, else first device)");
+    app->add_option("--iterations", e.iterations, "maximal number of iterations")->capture_default_str();
+    app->add_option("--tolerance", e.tolerance, "stop when the error level improves by less than this fraction (0 = never)")
+        ->check(CLI::NonNegativeNumber)->capture_default_str();
+    app->add_option("--seed", e.seed, "random seed")->capture_default_str();
+    app->add_option("--cones", e.cones, "c: number of cones")->check(CLI::Range(1u, 64u))->capture_default_str();
+    app->add_option("--generators", e.generators, "r: rays per cone")->check(CLI::Range(1u, 64u))->capture_default_str();
+    app->add_option("--alpha-max", alpha_degrees, "maximal cone half angle, degrees")->check(CLI::Range(0.0, 89.0))->capture_default_str();
+    app->add_option("--samples", e.samples, "m: random samples per hit cell")->check(CLI::Range(1u, 1024u))->capture_default_str();
+    app->add_option("--epsilon", e.epsilon, "feasibility bound and ray reach (0 = 0.6 x median local radius)")
+        ->check(CLI::NonNegativeNumber)->capture_default_str();
+    app->add_option("--leaf-size", options.leaf_size, "maximal points per cell")->check(CLI::Range(size_t(1), size_t(1) << 20))->capture_default_str();
+    app->add_option("--snapshots", options.snapshots_directory, "write the mesh after every iteration into this directory");
+  }
+
+  int run(bool evolution) {
+    check_output_path(output, {"obj", "off", "ply", "om"});
+    if (!report.empty()) check_output_path(report, {"json"});
+    options.evolve = evolution;
+    options.evolution.alpha_max = alpha_degrees * M_PI / 180.0;
+    options.backend = backend == "serial" ? BackendKind::kSerial : backend == "opencl" ? BackendKind::kOpenCL : BackendKind::kAuto;
+    options.initial.ends = ends == "open" ? EndMode::kOpen : ends == "capped" ? EndMode::kCapped : EndMode::kAuto;
+    options.initial.stage = stage;
+    options.measure = evolution;
+    FitResult result = run_fit(points, skeleton, options);
+    write_mesh(output, result.mesh);
+    if (!report.empty()) write_text_atomically(report, result.report.dump(2) + "\n");
+    print_summary(result.report);
+    return kExitOk;
+  }
+
+  void print_summary(const nlohmann::json& r) const {
+    const auto& m = r.contains("metrics") ? r["metrics"]["mesh"] : r["initial_mesh"]["statistics"];
+    std::printf("mesh: %s (%zu vertices, %zu faces, Euler characteristic %ld, %zu irregular vertices)\n", output.c_str(),
+                m["vertices"].get<size_t>(), m["faces"].get<size_t>(), m["euler_characteristic"].get<long>(),
+                m["irregular_vertices"].get<size_t>());
+    if (r.contains("evolution")) {
+      const auto& e = r["evolution"];
+      std::printf("backend: %s on %s; error level %.4g -> %.4g after %zu iterations\n",
+                  r["backend"]["name"].get<std::string>().c_str(), r["backend"]["device"].get<std::string>().c_str(),
+                  e["initial_error_level"].get<double>(), e["final_error_level"].get<double>(), e["iterations"].size());
+      const auto& q = r["metrics"];
+      std::printf("distance mesh->cloud mean %.4g p95 %.4g; cloud->mesh mean %.4g p95 %.4g; %zu intersecting face pairs\n",
+                  q["mesh_to_cloud"]["mean"].get<double>(), q["mesh_to_cloud"]["p95"].get<double>(),
+                  q["cloud_to_mesh"]["mean"].get<double>(), q["cloud_to_mesh"]["p95"].get<double>(),
+                  q["intersecting_face_pairs"].get<size_t>());
+    }
+    if (!report.empty()) std::printf("report: %s\n", report.c_str());
+  }
+};
+
+int run_generate(const std::string& name, const std::string& directory, const ShapeOptions& options) {
+  GeneratedShape shape = generate_shape(name, options);
+  write_generated_shape(shape, directory);
+  auto [lo, hi] = bounding_box(shape.cloud);
+  std::printf("%s: %zu points in [%.3f, %.3f] x [%.3f, %.3f] x [%.3f, %.3f], %zu skeleton nodes\n", name.c_str(),
+              shape.cloud.size(), lo.x(), hi.x(), lo.y(), hi.y(), lo.z(), hi.z(), shape.skeleton.nodes.size());
+  std::string base = (std::filesystem::path(directory) / name).string();
+  std::printf("wrote %s.ply, %s.skeleton.obj, %s.surface.json\n", base.c_str(), base.c_str(), base.c_str());
+  return kExitOk;
+}
+
+int run_devices() {
+#ifdef MCQUAD_WITH_OPENCL
+  auto devices = list_devices();
+  if (devices.empty()) {
+    std::printf("no OpenCL devices found (install an ICD such as pocl-opencl-icd)\n");
+    return kExitDevice;
+  }
+  for (const auto& d : devices)
+    std::printf("%d: %s [%s] on %s, %s, %u compute units, %.1f GiB\n", d.index, d.name.c_str(), d.type.c_str(),
+                d.platform.c_str(), d.version.c_str(), d.compute_units, d.global_memory / 1073741824.0);
+  return kExitOk;
+#else
+  std::printf("this build of mcquad has no OpenCL backend\n");
+  return kExitDevice;
+#endif
+}
+
+int run_metrics(const std::string& mesh_path, const std::string& points_path, const std::string& skeleton_path,
+                size_t leaf_size, const std::string& json_path) {
+  QuadMesh mesh = read_mesh(mesh_path);
+  PointCloud cloud = read_point_cloud(points_path);
+  CellTree cells = build_cell_tree(cloud, leaf_size);
+  std::unique_ptr<SkeletonGraph> graph;
+  if (!skeleton_path.empty())
+    graph = std::make_unique<SkeletonGraph>(build_skeleton_graph(read_skeleton(skeleton_path), skeleton_path));
+  nlohmann::json metrics = to_json(measure_quality(mesh, cloud, cells, graph.get()));
+  if (!json_path.empty()) write_text_atomically(json_path, metrics.dump(2) + "\n");
+  std::printf("%s\n", metrics.dump(2).c_str());
+  return kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"mcquad: quad meshes from point clouds and their skeletons by the Monte Carlo method"};
+  app.set_version_flag("--version", std::string("mcquad ") + MCQUAD_VERSION);
+  app.require_subcommand(1);
+
+  FitCommand fit, init;
+  auto* fit_app = app.add_subcommand("fit", "the whole pipeline: initial mesh, Monte Carlo evolution, metrics");
+  fit.add_options(fit_app, true);
+  auto* init_app = app.add_subcommand("init", "the initial quad mesh only (the paper's Fig. 1)");
+  init.add_options(init_app, false);
+
+  std::string shape_name, shape_dir;
+  ShapeOptions shape_options;
+  std::string shape_help = "synthetic clouds with skeletons and true surfaces:";
+  for (const auto& [name, what] : shape_catalogue()) shape_help += "\n  " + name + ": " + what;
+  auto* generate_app = app.add_subcommand("generate", shape_help);
+  generate_app->add_option("NAME", shape_name, "shape name")->required();
+  generate_app->add_option("-o,--output", shape_dir, "output directory")->required();
+  generate_app->add_option("--points", shape_options.points, "number of points (0 = the shape's default)")->capture_default_str();
+  generate_app->add_option("--noise", shape_options.noise, "noise along the normal, fraction of the tube radius")
+      ->check(CLI::NonNegativeNumber)->capture_default_str();
+  generate_app->add_option("--seed", shape_options.seed, "random seed")->capture_default_str();
+  generate_app->add_option("--angle", shape_options.angle_degrees, "y-fork: angle between the branches, degrees")
+      ->check(CLI::Range(5.0, 175.0))->capture_default_str();
+  generate_app->add_option("--arms", shape_options.arms, "star: junction valence (3..6)")->check(CLI::Range(3, 6))->capture_default_str();
+
+  app.add_subcommand("devices", "list the OpenCL platforms and devices");
+
+  std::string metrics_mesh, metrics_points, metrics_skeleton, metrics_json;
+  size_t metrics_leaf = 24;
+  auto* metrics_app = app.add_subcommand("metrics", "distances both ways, error level, topology and defects of a mesh");
+  metrics_app->add_option("MESH", metrics_mesh, "mesh (.obj, .off, .ply, .om)")->required();
+  metrics_app->add_option("POINTS", metrics_points, "point cloud")->required();
+  metrics_app->add_option("--skeleton", metrics_skeleton, "skeleton, to count faces turned into the tube");
+  metrics_app->add_option("--leaf-size", metrics_leaf, "maximal points per cell (for the error level)")->capture_default_str();
+  metrics_app->add_option("--json", metrics_json, "also write the metrics here");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    int code = app.exit(e);
+    return code == 0 ? kExitOk : kExitUsage;
+  }
+
+  try {
+    if (*fit_app) return fit.run(true);
+    if (*init_app) return init.run(false);
+    if (*generate_app) return run_generate(shape_name, shape_dir, shape_options);
+    if (app.got_subcommand("devices")) return run_devices();
+    if (*metrics_app) return run_metrics(metrics_mesh, metrics_points, metrics_skeleton, metrics_leaf, metrics_json);
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "mcquad: error: %s\n", e.what());
+    return kExitInput;
+  } catch (const UnsupportedError& e) {
+    std::fprintf(stderr, "mcquad: unsupported: %s\n", e.what());
+    return kExitUnsupported;
+  } catch (const DeviceError& e) {
+    std::fprintf(stderr, "mcquad: device error: %s\n", e.what());
+    return kExitDevice;
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "mcquad: output error: %s\n", e.what());
+    return kExitOutput;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "mcquad: error: out of memory\n");
+    return kExitInternal;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mcquad: internal error: %s\n", e.what());
+    return kExitInternal;
+  }
+  return kExitUsage;
+}

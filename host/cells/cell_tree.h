@@ -1,0 +1,34 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/point_cloud.h"
+
+namespace mcquad {
+
+//! The paper's point cells: the leaves of a balanced kd-tree over the cloud
+//! (nanoflann), flattened once into the arrays that both backends read (the
+//! layout is documented in kernels/shared/mcq_cell_tree.h). Inner nodes keep
+//! tight boxes for ray traversal and nearest-point queries.
+struct CellTree {
+  std::vector<float> points;              //!< 3 per point, reordered by cell
+  std::vector<uint32_t> point_ids;        //!< original index of each reordered point
+  std::vector<uint32_t> cell_offsets;     //!< cell c holds points [offsets[c], offsets[c+1])
+  std::vector<float> cell_centroids;      //!< 3 per cell: the paper's g_l
+  std::vector<float> cell_normals;        //!< 3 per cell: the paper's t_l (least-squares plane normal)
+  std::vector<float> node_bounds;         //!< 6 per node: tight min xyz, max xyz
+  std::vector<int32_t> node_children;     //!< 2 per node; a leaf stores -1 - cell, -1
+  int depth = 0;                          //!< longest root-to-leaf path, in edges
+
+  size_t cell_count() const { return cell_offsets.empty() ? 0 : cell_offsets.size() - 1; }
+  size_t node_count() const { return node_children.size() / 2; }
+  size_t point_count() const { return point_ids.size(); }
+  size_t byte_size() const;
+};
+
+//! Builds the cells with at most `leaf_size` points each. Throws
+//! UnsupportedError if the tree is deeper than the traversal stack allows.
+CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size);
+
+}  // namespace mcquad

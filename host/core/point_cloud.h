@@ -1,0 +1,23 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <vector>
+
+namespace mcquad {
+
+//! An unorganized point cloud. Positions are float (what the device uses and
+//! what scanners deliver); normals are optional and never required.
+struct PointCloud {
+  std::vector<Eigen::Vector3f> points;
+  std::vector<Eigen::Vector3f> normals;  //!< empty, or one per point
+
+  size_t size() const { return points.size(); }
+  bool empty() const { return points.empty(); }
+  //! Flat x,y,z array view of the points (Eigen::Vector3f is three packed floats).
+  const float* data() const { return reinterpret_cast<const float*>(points.data()); }
+};
+
+//! Axis-aligned bounding box of a cloud (min, max); zero box for an empty one.
+std::pair<Eigen::Vector3f, Eigen::Vector3f> bounding_box(const PointCloud& cloud);
+
+}  // namespace mcquad

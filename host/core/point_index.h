@@ -1,0 +1,70 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <nanoflann.hpp>
+#include <vector>
+
+namespace mcquad {
+
+//! Nearest-neighbour index over a vector of 3D points (nanoflann through an
+//! adaptor, so the points are indexed in place, not copied). The points must
+//! outlive the index and stay unchanged.
+template <typename Scalar>
+class PointIndex {
+ public:
+  using Point = Eigen::Matrix<Scalar, 3, 1>;
+
+  explicit PointIndex(const std::vector<Point>& points, size_t leaf_size = 16)
+      : adaptor_{points}, tree_(3, adaptor_, nanoflann::KDTreeSingleIndexAdaptorParams(leaf_size)) {
+    tree_.buildIndex();
+  }
+
+  //! Index of the nearest point and its squared distance (-1 for an empty index).
+  std::pair<long, Scalar> nearest(const Point& query) const {
+    if (adaptor_.points.empty()) return {-1, Scalar(0)};
+    size_t index = 0;
+    Scalar distance2 = 0;
+    nanoflann::KNNResultSet<Scalar, size_t> result(1);
+    result.init(&index, &distance2);
+    tree_.findNeighbors(result, query.data(), nanoflann::SearchParams());
+    return {long(index), distance2};
+  }
+
+  //! The k nearest points (indices), nearest first.
+  std::vector<size_t> k_nearest(const Point& query, size_t k) const {
+    k = std::min(k, adaptor_.points.size());
+    std::vector<size_t> indices(k);
+    std::vector<Scalar> distances(k);
+    if (k == 0) return indices;
+    size_t found = tree_.knnSearch(query.data(), k, indices.data(), distances.data());
+    indices.resize(found);
+    return indices;
+  }
+
+  //! Indices of all points within `radius` of the query.
+  std::vector<size_t> within(const Point& query, Scalar radius) const {
+    std::vector<std::pair<size_t, Scalar>> matches;
+    tree_.radiusSearch(query.data(), radius * radius, matches, nanoflann::SearchParams());
+    std::vector<size_t> indices;
+    indices.reserve(matches.size());
+    for (const auto& m : matches) indices.push_back(m.first);
+    return indices;
+  }
+
+ private:
+  struct Adaptor {
+    const std::vector<Point>& points;
+    size_t kdtree_get_point_count() const { return points.size(); }
+    Scalar kdtree_get_pt(size_t i, size_t dim) const { return points[i][dim]; }
+    template <class Box>
+    bool kdtree_get_bbox(Box&) const { return false; }
+  };
+  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<Scalar, Adaptor>, Adaptor, 3, size_t>;
+  using IndexType = size_t;
+
+  Adaptor adaptor_;
+  Tree tree_;
+};
+
+}  // namespace mcquad

@@ -1,0 +1,27 @@
+#include "core/progress.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+namespace mcquad {
+
+Progress::Progress(std::string label, size_t total)
+    : label_(std::move(label)), total_(total), enabled_(isatty(STDERR_FILENO) != 0) {}
+
+Progress::~Progress() {
+  if (enabled_ && last_percent_ >= 0) std::fprintf(stderr, "\r%s: done%20s\n", label_.c_str(), "");
+}
+
+void Progress::update(size_t done) {
+  if (!enabled_ || total_ == 0) return;
+  int percent = static_cast<int>(100 * done / total_);
+  if (percent == last_percent_) return;
+  last_percent_ = percent;
+  std::fprintf(stderr, "\r%s: %3d%%", label_.c_str(), percent);
+  std::fflush(stderr);
+}
+
+void warn(const std::string& message) { std::fprintf(stderr, "mcquad: warning: %s\n", message.c_str()); }
+
+}  // namespace mcquad

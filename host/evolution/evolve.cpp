@@ -1,0 +1,52 @@
+#include "evolution/evolve.h"
+
+#include <chrono>
+
+#include "core/progress.h"
+
+namespace mcquad {
+
+device::mcq_step_params make_step_params(const EvolutionParameters& parameters, unsigned iteration) {
+  device::mcq_step_params params;
+  params.cones = parameters.cones;
+  params.generators = parameters.generators;
+  params.samples = parameters.samples;
+  params.seed = parameters.seed;
+  params.iteration = iteration;
+  params.alpha_max = float(parameters.alpha_max);
+  params.epsilon = float(parameters.epsilon);
+  // The paper: epsilon "determines the maximal distance of the acceptable
+  // point cells" -- rays look no further than that.
+  params.reach = float(parameters.epsilon);
+  return params;
+}
+
+EvolutionResult evolve(EvolutionBackend& backend, const EvolutionParameters& parameters,
+                       const IterationCallback& after_iteration) {
+  using Clock = std::chrono::steady_clock;
+  EvolutionResult result;
+  result.initial_error_level = backend.error_level();
+  result.stop_reason = "iteration limit";
+  double previous = result.initial_error_level;
+  Progress progress("evolving", parameters.iterations);
+  for (unsigned i = 0; i < parameters.iterations; ++i) {
+    auto start = Clock::now();
+    backend.step(make_step_params(parameters, i));
+    IterationRecord record;
+    record.iteration = i + 1;
+    record.error_level = backend.error_level();
+    record.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    result.iterations.push_back(record);
+    progress.update(i + 1);
+    if (after_iteration) after_iteration(record, backend);
+    if (parameters.tolerance > 0 && previous - record.error_level < parameters.tolerance * previous) {
+      result.stop_reason = "error level improved by less than the tolerance";
+      break;
+    }
+    previous = record.error_level;
+  }
+  result.positions = backend.positions();
+  return result;
+}
+
+}  // namespace mcquad

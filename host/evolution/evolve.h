@@ -1,0 +1,38 @@
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "evolution/evolution_backend.h"
+#include "evolution/evolution_parameters.h"
+
+namespace mcquad {
+
+struct IterationRecord {
+  unsigned iteration = 0;   //!< 1-based
+  double error_level = 0;   //!< the paper's e-bar after this iteration
+  double seconds = 0;       //!< wall time of the step, normals and error level
+};
+
+struct EvolutionResult {
+  double initial_error_level = 0;
+  std::vector<IterationRecord> iterations;
+  std::string stop_reason;
+  std::vector<float> positions;
+};
+
+//! Called after each iteration with its record; snapshots read positions
+//! from the backend here (the only time the mesh leaves the device early).
+using IterationCallback = std::function<void(const IterationRecord&, EvolutionBackend&)>;
+
+//! Step parameters of iteration `iteration` (0-based) for the shared code.
+device::mcq_step_params make_step_params(const EvolutionParameters& parameters, unsigned iteration);
+
+//! Runs the evolution on a loaded backend: up to `iterations` Jacobi steps,
+//! stopping early when the error level improves by less than `tolerance`
+//! (relative) from one iteration to the next.
+EvolutionResult evolve(EvolutionBackend& backend, const EvolutionParameters& parameters,
+                       const IterationCallback& after_iteration = {});
+
+}  // namespace mcquad

@@ -1,0 +1,44 @@
+#include "evolution/serial_backend.h"
+
+namespace mcquad {
+
+void SerialBackend::load(const CellTree& cells, const MeshArrays& mesh) {
+  cells_ = &cells;
+  mesh_ = mesh;
+  positions_ = mesh.positions;
+  next_positions_.resize(positions_.size());
+  normals_.resize(positions_.size());
+  update_normals();
+}
+
+void SerialBackend::update_normals() {
+  for (uint32_t v = 0; v < mesh_.vertex_count(); ++v)
+    device::mcq_store3(normals_.data(), v,
+                       device::mcq_vertex_normal(positions_.data(), mesh_.faces.data(), mesh_.vertex_face_offsets.data(),
+                                                 mesh_.vertex_faces.data(), v));
+}
+
+void SerialBackend::step(const device::mcq_step_params& params) {
+  for (uint32_t v = 0; v < mesh_.vertex_count(); ++v) {
+    device::mcq_vec3 q = device::mcq_load3(positions_.data(), v);
+    device::mcq_vec3 n = device::mcq_load3(normals_.data(), v);
+    uint32_t feasible;
+    float delta = device::mcq_vertex_displacement(cells_->node_bounds.data(), cells_->node_children.data(),
+                                                  cells_->cell_offsets.data(), cells_->points.data(), q, n, v, params,
+                                                  &feasible);
+    device::mcq_store3(next_positions_.data(), v, device::mcq_add(q, device::mcq_scale(n, delta)));
+  }
+  positions_.swap(next_positions_);
+  update_normals();
+}
+
+double SerialBackend::error_level() {
+  double sum = 0;
+  for (uint32_t v = 0; v < mesh_.vertex_count(); ++v)
+    sum += device::mcq_vertex_error(cells_->node_bounds.data(), cells_->node_children.data(), cells_->cell_offsets.data(),
+                                    cells_->points.data(), cells_->cell_centroids.data(), cells_->cell_normals.data(),
+                                    device::mcq_load3(positions_.data(), v));
+  return mesh_.vertex_count() ? sum / double(mesh_.vertex_count()) : 0.0;
+}
+
+}  // namespace mcquad

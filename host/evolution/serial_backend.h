@@ -1,0 +1,27 @@
+#pragma once
+
+#include "evolution/evolution_backend.h"
+
+namespace mcquad {
+
+//! The reference path: plain loops over the vertices calling the shared
+//! per-vertex functions, single-threaded and deterministic.
+class SerialBackend : public EvolutionBackend {
+ public:
+  std::string name() const override { return "serial"; }
+  std::string device_name() const override { return "host CPU (one thread)"; }
+  void load(const CellTree& cells, const MeshArrays& mesh) override;
+  void step(const device::mcq_step_params& params) override;
+  double error_level() override;
+  std::vector<float> positions() override { return positions_; }
+  std::vector<float> normals() override { return normals_; }
+
+ private:
+  void update_normals();
+
+  const CellTree* cells_ = nullptr;
+  MeshArrays mesh_;
+  std::vector<float> positions_, next_positions_, normals_;
+};
+
+}  // namespace mcquad

@@ -1,0 +1,43 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/point_cloud.h"
+#include "generate/tube_surface.h"
+#include "io/skeleton_io.h"
+
+namespace mcquad {
+
+struct ShapeOptions {
+  size_t points = 0;      //!< 0 = the shape's default count
+  double noise = 0;       //!< standard deviation along the normal, as a fraction of the tube radius
+  uint64_t seed = 1;
+  double angle_degrees = 60;  //!< y-fork: angle between the two branches
+  int arms = 4;               //!< star: valence of the junction (3..6), arms at skew angles
+};
+
+//! A synthetic cloud with its skeleton and its true surface.
+struct GeneratedShape {
+  std::string name;
+  PointCloud cloud;
+  SkeletonData skeleton;
+  TubeSurface surface;
+  int open_ends = 0;        //!< ends where the surface is open
+  int independent_cycles = 0;
+};
+
+//! Names accepted by generate_shape, with one line describing each.
+std::vector<std::pair<std::string, std::string>> shape_catalogue();
+
+//! Makes a named shape: t-shape (Fig. 1, open leg), torus-knot (Fig. 7:
+//! 413,696 points in the paper's box), tube-frame (Fig. 6 stand-in: 182,274
+//! points in the paper's box), tube, bent-tube (open both ends), torus,
+//! y-fork, star (one junction, valence 3..6, skew), theta (two junctions,
+//! three chains). InputError for an unknown name.
+GeneratedShape generate_shape(const std::string& name, const ShapeOptions& options);
+
+//! Writes DIR/NAME.ply, DIR/NAME.skeleton.obj and DIR/NAME.surface.json.
+void write_generated_shape(const GeneratedShape& shape, const std::string& directory);
+
+}  // namespace mcquad

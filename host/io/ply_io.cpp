@@ -1,0 +1,347 @@
+#include "io/ply_io.h"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <optional>
+#include <sstream>
+
+#include "core/errors.h"
+#include "io/file_utils.h"
+
+namespace mcquad {
+namespace {
+
+enum class PlyFormat { kAscii, kBinaryLittle, kBinaryBig };
+
+struct PlyProperty {
+  std::string name;
+  int size = 0;           // bytes of the scalar (or of each list item)
+  char kind = 'f';        // 'i' signed, 'u' unsigned, 'f' floating
+  bool is_list = false;
+  int count_size = 0;     // bytes of the list length
+  char count_kind = 'u';
+};
+
+struct PlyElement {
+  std::string name;
+  unsigned long long count = 0;
+  std::vector<PlyProperty> properties;
+  bool has_lists() const {
+    for (const auto& p : properties)
+      if (p.is_list) return true;
+    return false;
+  }
+  size_t fixed_stride() const {
+    size_t stride = 0;
+    for (const auto& p : properties) stride += p.size;
+    return stride;
+  }
+};
+
+struct PlyHeader {
+  PlyFormat format = PlyFormat::kAscii;
+  std::vector<PlyElement> elements;
+  size_t body_offset = 0;
+};
+
+bool scalar_type(const std::string& type, int& size, char& kind) {
+  static const std::array<std::pair<const char*, std::pair<int, char>>, 16> types{{
+      {"char", {1, 'i'}}, {"int8", {1, 'i'}}, {"uchar", {1, 'u'}}, {"uint8", {1, 'u'}},
+      {"short", {2, 'i'}}, {"int16", {2, 'i'}}, {"ushort", {2, 'u'}}, {"uint16", {2, 'u'}},
+      {"int", {4, 'i'}}, {"int32", {4, 'i'}}, {"uint", {4, 'u'}}, {"uint32", {4, 'u'}},
+      {"float", {4, 'f'}}, {"float32", {4, 'f'}}, {"double", {8, 'f'}}, {"float64", {8, 'f'}},
+  }};
+  for (const auto& [name, info] : types) {
+    if (type == name) {
+      size = info.first;
+      kind = info.second;
+      return true;
+    }
+  }
+  return false;
+}
+
+PlyHeader parse_header(const std::string& path, const std::string& bytes) {
+  auto fail = [&](size_t line, const std::string& what) -> InputError {
+    return InputError(path + ": PLY header line " + std::to_string(line) + ": " + what);
+  };
+  if (bytes.compare(0, 3, "ply") != 0) throw InputError(path + ": not a PLY file (no 'ply' magic)");
+  size_t end = bytes.find("end_header");
+  if (end == std::string::npos) throw InputError(path + ": truncated PLY header (no end_header)");
+  size_t body = bytes.find('\n', end);
+  if (body == std::string::npos) throw InputError(path + ": truncated PLY header (end_header not terminated)");
+  PlyHeader header;
+  header.body_offset = body + 1;
+  bool have_format = false;
+  std::istringstream lines(bytes.substr(0, end));
+  std::string line;
+  size_t number = 0;
+  while (std::getline(lines, line)) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream words(line);
+    std::string keyword;
+    words >> keyword;
+    if (keyword.empty() || keyword == "ply" || keyword == "comment" || keyword == "obj_info") continue;
+    if (keyword == "format") {
+      std::string format, version;
+      words >> format >> version;
+      if (format == "ascii") header.format = PlyFormat::kAscii;
+      else if (format == "binary_little_endian") header.format = PlyFormat::kBinaryLittle;
+      else if (format == "binary_big_endian") header.format = PlyFormat::kBinaryBig;
+      else throw fail(number, "unknown format '" + format + "'");
+      have_format = true;
+    } else if (keyword == "element") {
+      PlyElement element;
+      std::string count;
+      words >> element.name >> count;
+      long long value;
+      if (element.name.empty() || !parse_integer(count, value) || value < 0)
+        throw fail(number, "bad element declaration '" + line + "'");
+      element.count = static_cast<unsigned long long>(value);
+      header.elements.push_back(element);
+    } else if (keyword == "property") {
+      if (header.elements.empty()) throw fail(number, "property before any element");
+      PlyProperty property;
+      std::string type;
+      words >> type;
+      if (type == "list") {
+        std::string count_type, item_type;
+        words >> count_type >> item_type >> property.name;
+        char item_kind;
+        if (!scalar_type(count_type, property.count_size, property.count_kind) ||
+            !scalar_type(item_type, property.size, item_kind) || property.count_kind == 'f')
+          throw fail(number, "bad list property '" + line + "'");
+        property.kind = item_kind;
+        property.is_list = true;
+      } else {
+        words >> property.name;
+        if (!scalar_type(type, property.size, property.kind)) throw fail(number, "unknown property type '" + type + "'");
+      }
+      if (property.name.empty()) throw fail(number, "property without a name");
+      header.elements.back().properties.push_back(property);
+    } else {
+      throw fail(number, "unknown keyword '" + keyword + "'");
+    }
+  }
+  if (!have_format) throw InputError(path + ": PLY header has no format line");
+  return header;
+}
+
+//! Reads scalars from a binary body with the file's byte order.
+class BinaryCursor {
+ public:
+  BinaryCursor(const std::string& bytes, size_t offset, bool big_endian)
+      : bytes_(bytes), offset_(offset), swap_(big_endian) {}
+
+  size_t remaining() const { return bytes_.size() - offset_; }
+  size_t offset() const { return offset_; }
+  void skip(size_t n) { offset_ += n; }
+
+  double read(int size, char kind) {
+    unsigned char raw[8];
+    std::memcpy(raw, bytes_.data() + offset_, size);
+    offset_ += size;
+    if (swap_)
+      for (int i = 0; i < size / 2; ++i) std::swap(raw[i], raw[size - 1 - i]);
+    return decode(raw, size, kind);
+  }
+
+  static double decode(const unsigned char* raw, int size, char kind) {
+    switch (size) {
+      case 1: return kind == 'i' ? double(static_cast<int8_t>(raw[0])) : double(raw[0]);
+      case 2: {
+        uint16_t v;
+        std::memcpy(&v, raw, 2);
+        return kind == 'i' ? double(static_cast<int16_t>(v)) : double(v);
+      }
+      case 4: {
+        if (kind == 'f') {
+          float f;
+          std::memcpy(&f, raw, 4);
+          return f;
+        }
+        uint32_t v;
+        std::memcpy(&v, raw, 4);
+        return kind == 'i' ? double(static_cast<int32_t>(v)) : double(v);
+      }
+      default: {
+        double d;
+        std::memcpy(&d, raw, 8);
+        return d;
+      }
+    }
+  }
+
+ private:
+  const std::string& bytes_;
+  size_t offset_;
+  bool swap_;
+};
+
+struct VertexColumns {
+  int x = -1, y = -1, z = -1, nx = -1, ny = -1, nz = -1;
+};
+
+VertexColumns find_columns(const std::string& path, const PlyElement& vertex) {
+  VertexColumns c;
+  for (size_t i = 0; i < vertex.properties.size(); ++i) {
+    const auto& p = vertex.properties[i];
+    int* slot = p.name == "x" ? &c.x : p.name == "y" ? &c.y : p.name == "z" ? &c.z
+              : p.name == "nx" ? &c.nx : p.name == "ny" ? &c.ny : p.name == "nz" ? &c.nz : nullptr;
+    if (slot && !p.is_list) *slot = static_cast<int>(i);
+  }
+  if (c.x < 0 || c.y < 0 || c.z < 0) throw InputError(path + ": PLY vertex element lacks x, y or z");
+  return c;
+}
+
+void store_vertex(const std::string& path, PointCloud& cloud, const VertexColumns& c, const double* values,
+                  unsigned long long index) {
+  Eigen::Vector3d p(values[c.x], values[c.y], values[c.z]);
+  if (!p.allFinite())
+    throw InputError(path + ": vertex " + std::to_string(index) + ": coordinate is NaN or infinite");
+  cloud.points.push_back(p.cast<float>());
+  if (c.nx >= 0 && c.ny >= 0 && c.nz >= 0)
+    cloud.normals.emplace_back(float(values[c.nx]), float(values[c.ny]), float(values[c.nz]));
+}
+
+void skip_binary_element(const std::string& path, const PlyElement& element, BinaryCursor& cursor) {
+  if (!element.has_lists()) {
+    size_t need = element.fixed_stride();
+    if (need != 0 && element.count > cursor.remaining() / need)
+      throw InputError(path + ": truncated PLY: element '" + element.name + "' claims " +
+                       std::to_string(element.count) + " entries, more than the file holds");
+    cursor.skip(need * element.count);
+    return;
+  }
+  for (unsigned long long i = 0; i < element.count; ++i) {
+    for (const auto& p : element.properties) {
+      size_t need = p.is_list ? p.count_size : p.size;
+      if (cursor.remaining() < need)
+        throw InputError(path + ": truncated PLY in element '" + element.name + "' entry " + std::to_string(i));
+      if (!p.is_list) {
+        cursor.skip(p.size);
+        continue;
+      }
+      double n = cursor.read(p.count_size, p.count_kind);
+      if (n < 0 || n * p.size > double(cursor.remaining()))
+        throw InputError(path + ": truncated PLY in element '" + element.name + "' entry " + std::to_string(i));
+      cursor.skip(static_cast<size_t>(n) * p.size);
+    }
+  }
+}
+
+PointCloud read_binary_vertices(const std::string& path, const std::string& bytes, const PlyHeader& header) {
+  BinaryCursor cursor(bytes, header.body_offset, header.format == PlyFormat::kBinaryBig);
+  PointCloud cloud;
+  for (const auto& element : header.elements) {
+    if (element.name != "vertex") {
+      skip_binary_element(path, element, cursor);
+      continue;
+    }
+    if (element.has_lists()) throw InputError(path + ": PLY vertex element with list properties is not supported");
+    VertexColumns columns = find_columns(path, element);
+    size_t stride = element.fixed_stride();
+    if (element.count > cursor.remaining() / stride)
+      throw InputError(path + ": truncated PLY: header claims " + std::to_string(element.count) +
+                       " vertices of " + std::to_string(stride) + " bytes but only " +
+                       std::to_string(cursor.remaining()) + " bytes follow");
+    cloud.points.reserve(element.count);
+    std::vector<double> values(element.properties.size());
+    for (unsigned long long i = 0; i < element.count; ++i) {
+      for (size_t k = 0; k < element.properties.size(); ++k)
+        values[k] = cursor.read(element.properties[k].size, element.properties[k].kind);
+      store_vertex(path, cloud, columns, values.data(), i);
+    }
+    return cloud;
+  }
+  throw InputError(path + ": PLY has no vertex element");
+}
+
+PointCloud read_ascii_vertices(const std::string& path, const std::string& bytes, const PlyHeader& header) {
+  std::string_view body(bytes);
+  body.remove_prefix(header.body_offset);
+  PointCloud cloud;
+  size_t element_index = 0;
+  unsigned long long entry = 0;
+  const PlyElement* element = nullptr;
+  std::optional<VertexColumns> columns;
+  std::vector<double> values;
+  size_t header_lines = 0;
+  for (char ch : bytes.substr(0, header.body_offset))
+    if (ch == '\n') ++header_lines;
+  auto advance_element = [&]() {
+    while (element_index < header.elements.size() && header.elements[element_index].count == 0) ++element_index;
+    element = element_index < header.elements.size() ? &header.elements[element_index] : nullptr;
+    entry = 0;
+    if (element && element->name == "vertex") {
+      columns = find_columns(path, *element);
+      // Never trust the header's count for an allocation: cap by what the body can hold.
+      cloud.points.reserve(std::min<unsigned long long>(element->count, body.size() / 6 + 1));
+    }
+  };
+  advance_element();
+  bool done = false;
+  for_each_line(body, [&](size_t line_number, std::string_view line) {
+    if (done || !element) return;
+    auto fields = split_fields(line);
+    if (fields.empty()) return;
+    std::string where = path + ": line " + std::to_string(header_lines + line_number);
+    if (element->name == "vertex") {
+      values.assign(element->properties.size(), 0.0);
+      if (fields.size() < element->properties.size())
+        throw InputError(where + ": vertex " + std::to_string(entry) + " has " + std::to_string(fields.size()) +
+                         " values, expected " + std::to_string(element->properties.size()));
+      for (size_t k = 0; k < element->properties.size(); ++k)
+        if (!parse_number(fields[k], values[k])) throw InputError(where + ": '" + std::string(fields[k]) + "' is not a number");
+      store_vertex(where, cloud, *columns, values.data(), entry);
+    }
+    if (++entry == element->count) {
+      if (element->name == "vertex") done = true;
+      ++element_index;
+      advance_element();
+    }
+  });
+  bool has_vertex = false;
+  for (const auto& e : header.elements) has_vertex = has_vertex || e.name == "vertex";
+  if (!has_vertex) throw InputError(path + ": PLY has no vertex element");
+  for (const auto& e : header.elements) {
+    if (e.name == "vertex" && cloud.points.size() < e.count)
+      throw InputError(path + ": truncated PLY: header claims " + std::to_string(e.count) + " vertices, file has " +
+                       std::to_string(cloud.points.size()));
+  }
+  return cloud;
+}
+
+}  // namespace
+
+PointCloud read_ply_cloud(const std::string& path) {
+  std::string bytes = read_file(path);
+  PlyHeader header = parse_header(path, bytes);
+  PointCloud cloud = header.format == PlyFormat::kAscii ? read_ascii_vertices(path, bytes, header)
+                                                        : read_binary_vertices(path, bytes, header);
+  if (cloud.normals.size() != cloud.points.size()) cloud.normals.clear();
+  return cloud;
+}
+
+void write_ply_cloud(const std::string& path, const PointCloud& cloud) {
+  bool with_normals = cloud.normals.size() == cloud.points.size() && !cloud.points.empty();
+  std::string header = "ply\nformat binary_little_endian 1.0\ncomment written by mcquad\nelement vertex " +
+                       std::to_string(cloud.size()) + "\nproperty float x\nproperty float y\nproperty float z\n";
+  if (with_normals) header += "property float nx\nproperty float ny\nproperty float nz\n";
+  header += "end_header\n";
+  std::string bytes = header;
+  size_t stride = with_normals ? 24 : 12;
+  bytes.resize(header.size() + stride * cloud.size());
+  char* out = bytes.data() + header.size();
+  static_assert(sizeof(float) == 4);
+  for (size_t i = 0; i < cloud.size(); ++i, out += stride) {
+    std::memcpy(out, cloud.points[i].data(), 12);
+    if (with_normals) std::memcpy(out + 12, cloud.normals[i].data(), 12);
+  }
+  write_text_atomically(path, bytes);
+}
+
+}  // namespace mcquad

@@ -1,0 +1,41 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/point_cloud.h"
+#include "core/quad_mesh.h"
+#include "skeleton/bone_assignment.h"
+#include "skeleton/skeleton_graph.h"
+
+namespace mcquad {
+
+enum class EndMode { kAuto, kOpen, kCapped };
+
+struct InitialMeshOptions {
+  double start_fraction = 0.7;   //!< initial mesh radius as a fraction of the local cloud radius
+  EndMode ends = EndMode::kAuto; //!< open/capped ends; auto decides from the cloud
+  double resolution = 0;         //!< target edge length; 0 = auto (32 vertices around a tube)
+  size_t target_vertices = 0;    //!< alternatively, refine until at least this many vertices
+  std::string stage = "refined"; //!< stop after "blocks", "extruded" or "refined"
+};
+
+struct InitialMesh {
+  QuadMesh mesh;
+  int open_ends = 0;
+  int refinement_levels = 0;
+  std::vector<bool> irregular_allowed;  //!< per vertex: on a junction block or a cap
+  std::vector<int> nearest_bone;        //!< per vertex of the unrefined mesh's chains (-1 on blocks)
+};
+
+//! Builds the paper's rough quad mesh (Fig. 1) automatically: a block of six
+//! face groups at every junction, rotated so each bone gets the face group
+//! that faces it best; chains swept ring by ring (8 vertices a ring) with
+//! rotation-minimizing frames; chains between two ports and pure loops closed
+//! with the cyclic offset of least twist, the rest spread along the chain;
+//! ends capped by a face group or left open; then Catmull-Clark refinement.
+//! Errors name the skeleton node (`source` prefixes messages).
+InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment& bones, const PointCloud& cloud,
+                               const InitialMeshOptions& options, const std::string& source);
+
+}  // namespace mcquad

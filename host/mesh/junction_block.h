@@ -1,0 +1,30 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "mesh/quad_soup.h"
+
+namespace mcquad {
+
+//! The rotation (columns: block axes in world space) of a junction block and
+//! which of its six face groups each bone takes: +x,-x,+y,-y,+z,-z = 0..5.
+struct BlockOrientation {
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  std::vector<int> face_of_bone;
+  double worst_cosine = 1;  //!< smallest cosine between a bone and its face's normal
+};
+
+//! One rotation of the block for all its bones, maximizing the bones'
+//! alignment with distinct face groups (sum of cosines plus the worst one).
+//! Valence 1..6; UnsupportedError above.
+BlockOrientation orient_block(const std::vector<Eigen::Vector3d>& bone_directions);
+
+//! Adds a junction block: a cube of six face groups (2x2 quads each) centred
+//! at `center`, its vertices on a sphere of radius `size`, rotated by
+//! `orientation`. The face groups taken by bones are left open; their rings
+//! are returned as ports, in bone order.
+std::vector<Port> add_junction_block(QuadSoup& soup, const Eigen::Vector3d& center, double size,
+                                     const BlockOrientation& orientation);
+
+}  // namespace mcquad

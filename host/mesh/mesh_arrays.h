@@ -1,0 +1,29 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/quad_mesh.h"
+
+namespace mcquad {
+
+//! The mesh flattened for the evolution, structure of arrays, made once
+//! after the topology is final: positions as floats, quads as 4 indices,
+//! vertex->face adjacency in CSR form. OpenCL buffers mirror it one to one.
+struct MeshArrays {
+  std::vector<float> positions;              //!< 3 per vertex
+  std::vector<uint32_t> faces;               //!< 4 per quad, counter-clockwise seen from outside
+  std::vector<uint32_t> vertex_face_offsets; //!< vertex v's faces: vertex_faces[offsets[v] .. offsets[v+1])
+  std::vector<uint32_t> vertex_faces;
+
+  size_t vertex_count() const { return positions.size() / 3; }
+  size_t face_count() const { return faces.size() / 4; }
+};
+
+//! Flattens an all-quad mesh (UnsupportedError for any other face).
+MeshArrays flatten_mesh(const QuadMesh& mesh);
+
+//! Copies flat positions back into the mesh (same vertex order).
+void set_positions(QuadMesh& mesh, const std::vector<float>& positions);
+
+}  // namespace mcquad

@@ -1,0 +1,32 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <array>
+#include <vector>
+
+namespace mcquad {
+
+//! Vertices and quads (counter-clockwise seen from outside) while the initial
+//! mesh is assembled; turned into an OpenMesh mesh once complete.
+struct QuadSoup {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<int, 4>> quads;
+  std::vector<bool> irregular_allowed;  //!< per vertex: on a junction block or a cap
+
+  int add_vertex(const Eigen::Vector3d& p, bool on_block_or_cap = false) {
+    vertices.push_back(p);
+    irregular_allowed.push_back(on_block_or_cap);
+    return int(vertices.size()) - 1;
+  }
+};
+
+//! Where a tube attaches: a ring of 8 vertices, counter-clockwise around
+//! `outward` (the direction the tube leaves in), and the ring's centre.
+struct Port {
+  std::array<int, 8> ring{};
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  Eigen::Vector3d outward = Eigen::Vector3d::UnitZ();
+  double radius = 0;  //!< mean distance of the ring's vertices from its centre
+};
+
+}  // namespace mcquad

@@ -1,0 +1,50 @@
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "cells/cell_tree.h"
+#include "core/point_cloud.h"
+#include "core/quad_mesh.h"
+#include "metrics/surface_distance.h"
+#include "skeleton/skeleton_graph.h"
+
+namespace mcquad {
+
+//! Topology of a mesh.
+struct MeshStatistics {
+  size_t vertices = 0, faces = 0, quads = 0, edges = 0;
+  size_t boundary_loops = 0;
+  size_t components = 0;
+  long euler_characteristic = 0;
+  double quad_fraction = 0;
+  size_t irregular_vertices = 0;  //!< valence != 4 inside, != 3 on a boundary
+  size_t non_manifold_vertices = 0;
+};
+
+MeshStatistics mesh_statistics(const QuadMesh& mesh);
+
+//! Indices of irregular vertices (valence != 4 inside, != 3 on a boundary).
+std::vector<int> irregular_vertices(const QuadMesh& mesh);
+
+//! Everything `mcquad metrics` and fit's report state about a mesh.
+struct QualityMetrics {
+  MeshStatistics statistics;
+  DistanceSummary mesh_to_cloud, cloud_to_mesh;
+  double error_level = 0;          //!< the paper's e-bar
+  long inward_faces = -1;          //!< faces whose normal points into the tube (-1: no skeleton)
+  size_t intersecting_face_pairs = 0;
+};
+
+//! Measures a mesh against its cloud (and skeleton, when given, for the
+//! faces turned into the tube).
+QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, const CellTree& cells,
+                               const SkeletonGraph* skeleton);
+
+//! Faces whose normal points toward the nearest bone instead of away.
+size_t inward_faces(const QuadMesh& mesh, const SkeletonGraph& skeleton);
+
+nlohmann::json to_json(const MeshStatistics& statistics);
+nlohmann::json to_json(const QualityMetrics& metrics);
+
+}  // namespace mcquad

@@ -1,0 +1,61 @@
+#include "metrics/surface_distance.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/point_index.h"
+#include "metrics/face_intersections.h"
+
+namespace mcquad {
+
+DistanceSummary summarize_distances(std::vector<double> distances) {
+  DistanceSummary s;
+  if (distances.empty()) return s;
+  double sum = 0;
+  for (double d : distances) sum += d;
+  s.mean = sum / distances.size();
+  size_t k = std::min(distances.size() - 1, size_t(std::ceil(0.95 * distances.size())) - 1);
+  std::nth_element(distances.begin(), distances.begin() + k, distances.end());
+  s.p95 = distances[k];
+  s.max = *std::max_element(distances.begin(), distances.end());
+  return s;
+}
+
+std::vector<double> mesh_to_cloud_distances(const QuadMesh& mesh, const PointCloud& cloud) {
+  PointIndex<float> index(cloud.points);
+  std::vector<double> out;
+  out.reserve(mesh.n_vertices());
+  for (auto v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
+    out.push_back(std::sqrt(double(index.nearest(Eigen::Vector3f(float(p[0]), float(p[1]), float(p[2]))).second)));
+  }
+  return out;
+}
+
+std::vector<double> cloud_to_mesh_distances(const QuadMesh& mesh, const PointCloud& cloud) {
+  std::vector<std::array<Eigen::Vector3d, 3>> triangles;
+  std::vector<Eigen::Vector3d> centroids;
+  for (auto f : mesh.faces()) {
+    std::vector<Eigen::Vector3d> corners;
+    for (auto v : mesh.fv_range(f)) {
+      const auto& p = mesh.point(v);
+      corners.emplace_back(p[0], p[1], p[2]);
+    }
+    for (size_t k = 1; k + 1 < corners.size(); ++k) {
+      triangles.push_back({corners[0], corners[k], corners[k + 1]});
+      centroids.push_back((corners[0] + corners[k] + corners[k + 1]) / 3.0);
+    }
+  }
+  PointIndex<double> index(centroids);
+  std::vector<double> out(cloud.size());
+  for (size_t i = 0; i < cloud.size(); ++i) {
+    Eigen::Vector3d p = cloud.points[i].cast<double>();
+    double best = INFINITY;
+    for (size_t t : index.k_nearest(p, 12))
+      best = std::min(best, point_triangle_distance(p, triangles[t][0], triangles[t][1], triangles[t][2]));
+    out[i] = best;
+  }
+  return out;
+}
+
+}  // namespace mcquad

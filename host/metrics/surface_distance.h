@@ -1,0 +1,25 @@
+#pragma once
+
+#include <vector>
+
+#include "core/point_cloud.h"
+#include "core/quad_mesh.h"
+
+namespace mcquad {
+
+struct DistanceSummary {
+  double mean = 0, p95 = 0, max = 0;
+};
+
+//! Summary of a list of distances (mean, 95th percentile, max).
+DistanceSummary summarize_distances(std::vector<double> distances);
+
+//! Distance of every mesh vertex to its nearest cloud point.
+std::vector<double> mesh_to_cloud_distances(const QuadMesh& mesh, const PointCloud& cloud);
+
+//! Distance of every cloud point to the mesh surface (quads split into two
+//! triangles; the exact point-triangle distance over the triangles whose
+//! centroids are nearest).
+std::vector<double> cloud_to_mesh_distances(const QuadMesh& mesh, const PointCloud& cloud);
+
+}  // namespace mcquad

@@ -1,0 +1,146 @@
+#include "opencl/opencl_backend.h"
+
+#include "core/errors.h"
+#include "opencl/program_cache.h"
+
+namespace mcquad {
+namespace {
+
+//! Global size rounded up to a multiple of the work-group size.
+cl::NDRange global_range(size_t items, size_t group) { return cl::NDRange((items + group - 1) / group * group); }
+constexpr size_t kGroupSize = 64;
+
+}  // namespace
+
+OpenCLBackend::OpenCLBackend(const DeviceInfo& device) : device_(device) {
+  try {
+    context_ = cl::Context(device_.device);
+    queue_ = cl::CommandQueue(context_, device_.device);
+    program_ = mcquad_program(context_, device_.device);
+    evolve_kernel_ = cl::Kernel(program_, "evolve_vertices");
+    normals_kernel_ = cl::Kernel(program_, "update_normals");
+    errors_kernel_ = cl::Kernel(program_, "vertex_errors");
+    reduce_kernel_ = cl::Kernel(program_, "reduce_sum");
+  } catch (const cl::Error& e) {
+    fail("setting up", e);
+  }
+}
+
+void OpenCLBackend::fail(const char* operation, const cl::Error& error) const {
+  throw DeviceError("OpenCL device " + device_.name + ": " + operation + " failed in " + error.what() + " (" +
+                    cl_error_name(error.err()) + ")");
+}
+
+template <typename T>
+cl::Buffer OpenCLBackend::upload(const std::vector<T>& data, cl_mem_flags flags) {
+  // Zero-sized buffers are invalid in OpenCL; an empty array gets one element.
+  size_t bytes = std::max<size_t>(data.size(), 1) * sizeof(T);
+  cl::Buffer buffer(context_, flags, bytes);
+  if (!data.empty()) queue_.enqueueWriteBuffer(buffer, CL_FALSE, 0, data.size() * sizeof(T), data.data());
+  return buffer;
+}
+
+void OpenCLBackend::load(const CellTree& cells, const MeshArrays& mesh) {
+  try {
+    vertex_count_ = uint32_t(mesh.vertex_count());
+    node_bounds_ = upload(cells.node_bounds);
+    node_children_ = upload(cells.node_children);
+    cell_offsets_ = upload(cells.cell_offsets);
+    points_ = upload(cells.points);
+    cell_centroids_ = upload(cells.cell_centroids);
+    cell_normals_ = upload(cells.cell_normals);
+    faces_ = upload(mesh.faces);
+    vertex_face_offsets_ = upload(mesh.vertex_face_offsets);
+    vertex_faces_ = upload(mesh.vertex_faces);
+    positions_ = upload(mesh.positions, CL_MEM_READ_WRITE);
+    next_positions_ = cl::Buffer(context_, CL_MEM_READ_WRITE, std::max<size_t>(mesh.positions.size(), 1) * 4);
+    normals_ = cl::Buffer(context_, CL_MEM_READ_WRITE, std::max<size_t>(mesh.positions.size(), 1) * 4);
+    feasible_ = cl::Buffer(context_, CL_MEM_READ_WRITE, std::max<size_t>(vertex_count_, 1) * 4);
+    errors_ = cl::Buffer(context_, CL_MEM_READ_WRITE, std::max<size_t>(vertex_count_, 1) * 4);
+    reduce_group_size_ = std::min<size_t>(256, device_.device.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>());
+    // Power of two for the tree reduction.
+    while (reduce_group_size_ & (reduce_group_size_ - 1)) reduce_group_size_ &= reduce_group_size_ - 1;
+    reduce_groups_ = std::min<size_t>(64, (vertex_count_ + reduce_group_size_ - 1) / reduce_group_size_ + 1);
+    partial_sums_ = cl::Buffer(context_, CL_MEM_READ_WRITE, reduce_groups_ * 4);
+    total_ = cl::Buffer(context_, CL_MEM_READ_WRITE, 4);
+    run_normals();
+    queue_.finish();
+  } catch (const cl::Error& e) {
+    fail("uploading the cells and the mesh", e);
+  }
+}
+
+void OpenCLBackend::run_normals() {
+  set_kernel_args(normals_kernel_, positions_, faces_, vertex_face_offsets_, vertex_faces_, normals_, vertex_count_);
+  queue_.enqueueNDRangeKernel(normals_kernel_, cl::NullRange, global_range(vertex_count_, kGroupSize), cl::NDRange(kGroupSize));
+}
+
+void OpenCLBackend::step(const device::mcq_step_params& params) {
+  try {
+    set_kernel_args(evolve_kernel_, positions_, normals_, next_positions_, feasible_, node_bounds_, node_children_,
+                    cell_offsets_, points_, params, vertex_count_);
+    queue_.enqueueNDRangeKernel(evolve_kernel_, cl::NullRange, global_range(vertex_count_, kGroupSize), cl::NDRange(kGroupSize));
+    std::swap(positions_, next_positions_);
+    run_normals();
+  } catch (const cl::Error& e) {
+    fail("the Monte Carlo step", e);
+  }
+}
+
+double OpenCLBackend::error_level() {
+  try {
+    set_kernel_args(errors_kernel_, positions_, node_bounds_, node_children_, cell_offsets_, points_, cell_centroids_,
+                    cell_normals_, errors_, vertex_count_);
+    queue_.enqueueNDRangeKernel(errors_kernel_, cl::NullRange, global_range(vertex_count_, kGroupSize), cl::NDRange(kGroupSize));
+    set_kernel_args(reduce_kernel_, errors_, partial_sums_, cl::Local(reduce_group_size_ * 4), vertex_count_);
+    queue_.enqueueNDRangeKernel(reduce_kernel_, cl::NullRange, cl::NDRange(reduce_groups_ * reduce_group_size_),
+                                cl::NDRange(reduce_group_size_));
+    set_kernel_args(reduce_kernel_, partial_sums_, total_, cl::Local(reduce_group_size_ * 4), uint32_t(reduce_groups_));
+    queue_.enqueueNDRangeKernel(reduce_kernel_, cl::NullRange, cl::NDRange(reduce_group_size_), cl::NDRange(reduce_group_size_));
+    float total = 0;
+    queue_.enqueueReadBuffer(total_, CL_TRUE, 0, 4, &total);
+    return vertex_count_ ? double(total) / vertex_count_ : 0.0;
+  } catch (const cl::Error& e) {
+    fail("the error level", e);
+  }
+}
+
+std::vector<float> OpenCLBackend::positions() {
+  std::vector<float> out(3 * size_t(vertex_count_));
+  try {
+    if (!out.empty()) queue_.enqueueReadBuffer(positions_, CL_TRUE, 0, out.size() * 4, out.data());
+  } catch (const cl::Error& e) {
+    fail("reading the positions back", e);
+  }
+  return out;
+}
+
+std::vector<float> OpenCLBackend::normals() {
+  std::vector<float> out(3 * size_t(vertex_count_));
+  try {
+    if (!out.empty()) queue_.enqueueReadBuffer(normals_, CL_TRUE, 0, out.size() * 4, out.data());
+  } catch (const cl::Error& e) {
+    fail("reading the normals back", e);
+  }
+  return out;
+}
+
+std::string cl_error_name(cl_int code) {
+  switch (code) {
+    case CL_DEVICE_NOT_FOUND: return "CL_DEVICE_NOT_FOUND";
+    case CL_DEVICE_NOT_AVAILABLE: return "CL_DEVICE_NOT_AVAILABLE";
+    case CL_MEM_OBJECT_ALLOCATION_FAILURE: return "CL_MEM_OBJECT_ALLOCATION_FAILURE: out of device memory";
+    case CL_OUT_OF_RESOURCES: return "CL_OUT_OF_RESOURCES";
+    case CL_OUT_OF_HOST_MEMORY: return "CL_OUT_OF_HOST_MEMORY";
+    case CL_BUILD_PROGRAM_FAILURE: return "CL_BUILD_PROGRAM_FAILURE";
+    case CL_INVALID_VALUE: return "CL_INVALID_VALUE";
+    case CL_INVALID_BUFFER_SIZE: return "CL_INVALID_BUFFER_SIZE: buffer larger than the device allows";
+    case CL_INVALID_KERNEL_ARGS: return "CL_INVALID_KERNEL_ARGS";
+    case CL_INVALID_WORK_GROUP_SIZE: return "CL_INVALID_WORK_GROUP_SIZE";
+    case CL_INVALID_ARG_SIZE: return "CL_INVALID_ARG_SIZE";
+    case -1001: return "CL_PLATFORM_NOT_FOUND_KHR";
+    default: return "OpenCL error " + std::to_string(code);
+  }
+}
+
+}  // namespace mcquad

@@ -1,0 +1,45 @@
+#include "opencl/program_cache.h"
+
+#include <functional>
+#include <map>
+#include <mutex>
+#include <tuple>
+
+#include "core/errors.h"
+
+namespace mcquad::embedded {
+extern const char* const mcq_platform_h;
+extern const char* const mcq_philox_h;
+extern const char* const mcq_cell_tree_h;
+extern const char* const mcq_monte_carlo_h;
+extern const char* const evolution_cl;
+}  // namespace mcquad::embedded
+
+namespace mcquad {
+
+std::string mcquad_program_source() {
+  return std::string(embedded::mcq_platform_h) + embedded::mcq_philox_h + embedded::mcq_cell_tree_h +
+         embedded::mcq_monte_carlo_h + embedded::evolution_cl;
+}
+
+cl::Program mcquad_program(const cl::Context& context, const cl::Device& device, const std::string& options) {
+  static std::mutex mutex;
+  static std::map<std::tuple<cl_context, cl_device_id, std::string, size_t>, cl::Program> cache;
+  static const std::string source = mcquad_program_source();
+  static const size_t source_hash = std::hash<std::string>()(source);
+  std::lock_guard<std::mutex> lock(mutex);
+  auto key = std::make_tuple(context(), device(), options, source_hash);
+  auto found = cache.find(key);
+  if (found != cache.end()) return found->second;
+  cl::Program program(context, source);
+  try {
+    program.build({device}, options.c_str());
+  } catch (const cl::Error&) {
+    std::string log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device);
+    throw DeviceError("OpenCL program build failed on " + device.getInfo<CL_DEVICE_NAME>() + ":\n" + log);
+  }
+  cache.emplace(key, program);
+  return program;
+}
+
+}  // namespace mcquad

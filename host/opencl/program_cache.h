@@ -1,0 +1,18 @@
+#pragma once
+
+#include <string>
+
+#include "opencl/cl_api.h"
+
+namespace mcquad {
+
+//! The mcquad OpenCL program (embedded sources: shared headers + kernels)
+//! built for one device, cached per (context, device, options, source hash)
+//! for the life of the process. DeviceError with the build log and the
+//! device name when the build fails.
+cl::Program mcquad_program(const cl::Context& context, const cl::Device& device, const std::string& options = "");
+
+//! The concatenated source the program is built from (for tests and tools).
+std::string mcquad_program_source();
+
+}  // namespace mcquad

@@ -1,0 +1,35 @@
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/quad_mesh.h"
+#include "evolution/evolution_backend.h"
+#include "evolution/evolution_parameters.h"
+#include "mesh/initial_mesh.h"
+
+namespace mcquad {
+
+struct FitOptions {
+  EvolutionParameters evolution;
+  InitialMeshOptions initial;
+  size_t leaf_size = 24;             //!< at most this many points per cell
+  BackendKind backend = BackendKind::kAuto;
+  std::string device;                //!< OpenCL device by index or name
+  std::string snapshots_directory;   //!< write the mesh after every iteration here
+  bool evolve = true;                //!< false: stop after the initial mesh (mcquad init)
+  bool measure = true;               //!< compute quality metrics for the report
+};
+
+struct FitResult {
+  QuadMesh mesh;
+  nlohmann::json report;
+};
+
+//! The whole pipeline: read, skeleton graph, radii, initial mesh, cells,
+//! Monte Carlo evolution, metrics. The report holds the parameters as used,
+//! per-iteration error level and time, backend and device, stage timings,
+//! mesh statistics and quality metrics.
+FitResult run_fit(const std::string& points_path, const std::string& skeleton_path, const FitOptions& options);
+
+}  // namespace mcquad

@@ -1,0 +1,135 @@
+#include "skeleton/bone_assignment.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/errors.h"
+#include "core/point_index.h"
+
+namespace mcquad {
+namespace {
+
+double median(std::vector<float>& values) {
+  if (values.empty()) return 0.0;
+  auto middle = values.begin() + values.size() / 2;
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+//! Dense samples along every bone so a kd-tree finds the nearest bone fast.
+void sample_bones(const SkeletonGraph& graph, std::vector<Eigen::Vector3d>& samples, std::vector<int>& sample_bone) {
+  double total = 0;
+  for (const auto& e : graph.edges) total += (graph.positions[e[1]] - graph.positions[e[0]]).norm();
+  double spacing = total / 20000.0;
+  for (size_t b = 0; b < graph.edges.size(); ++b) {
+    const auto& a = graph.positions[graph.edges[b][0]];
+    const auto& c = graph.positions[graph.edges[b][1]];
+    int steps = std::max(2, int(std::ceil((c - a).norm() / spacing)));
+    for (int k = 0; k <= steps; ++k) {
+      samples.push_back(a + (c - a) * (double(k) / steps));
+      sample_bone.push_back(int(b));
+    }
+  }
+}
+
+}  // namespace
+
+double segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double* t) {
+  Eigen::Vector3d ab = b - a;
+  double length2 = ab.squaredNorm();
+  double s = length2 > 0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+  if (t) *t = s;
+  return (p - (a + s * ab)).norm();
+}
+
+BoneAssignment assign_points_to_bones(const SkeletonGraph& graph, const PointCloud& cloud, const std::string& source) {
+  std::vector<Eigen::Vector3d> samples;
+  std::vector<int> sample_bone;
+  sample_bones(graph, samples, sample_bone);
+  PointIndex<double> index(samples);
+
+  // Bones incident to each bone's end nodes: the nearest sample's bone is
+  // refined against its neighbours, where bones meet at an angle.
+  size_t bone_count = graph.edges.size();
+  std::vector<std::vector<int>> node_bones(graph.node_count());
+  for (size_t b = 0; b < bone_count; ++b) {
+    node_bones[graph.edges[b][0]].push_back(int(b));
+    node_bones[graph.edges[b][1]].push_back(int(b));
+  }
+
+  BoneAssignment result;
+  size_t n = cloud.size();
+  result.bone.resize(n);
+  result.parameter.resize(n);
+  result.distance.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    Eigen::Vector3d p = cloud.points[i].cast<double>();
+    int first = sample_bone[index.nearest(p).first];
+    int best = first;
+    double best_t = 0, best_d = segment_distance(p, graph.positions[graph.edges[first][0]], graph.positions[graph.edges[first][1]], &best_t);
+    for (int end : graph.edges[first]) {
+      for (int b : node_bones[end]) {
+        double t, d = segment_distance(p, graph.positions[graph.edges[b][0]], graph.positions[graph.edges[b][1]], &t);
+        if (d < best_d) {
+          best = b;
+          best_d = d;
+          best_t = t;
+        }
+      }
+    }
+    result.bone[i] = best;
+    result.parameter[i] = float(best_t);
+    result.distance[i] = float(best_d);
+  }
+
+  std::vector<std::vector<float>> interior(bone_count), all(bone_count);
+  for (size_t i = 0; i < n; ++i) {
+    all[result.bone[i]].push_back(result.distance[i]);
+    if (result.parameter[i] > 0.0f && result.parameter[i] < 1.0f) interior[result.bone[i]].push_back(result.distance[i]);
+  }
+  result.bone_radius.resize(bone_count);
+  result.bone_point_count.resize(bone_count);
+  for (size_t b = 0; b < bone_count; ++b) {
+    result.bone_point_count[b] = all[b].size();
+    if (all[b].empty()) {
+      std::ostringstream s;
+      s << source << ": bone between nodes at (" << graph.positions[graph.edges[b][0]].transpose() << ") and ("
+        << graph.positions[graph.edges[b][1]].transpose() << ") has no cloud points near it: the skeleton does not match the cloud";
+      throw InputError(s.str());
+    }
+    result.bone_radius[b] = interior[b].size() >= 8 ? median(interior[b]) : median(all[b]);
+  }
+
+  result.node_radius.assign(graph.node_count(), 0.0);
+  for (size_t v = 0; v < graph.node_count(); ++v) {
+    double sum = 0, smallest = INFINITY;
+    for (int b : node_bones[v]) {
+      sum += result.bone_radius[b];
+      smallest = std::min(smallest, result.bone_radius[b]);
+    }
+    result.node_radius[v] = graph.kind(int(v)) == NodeKind::kJunction ? smallest : sum / node_bones[v].size();
+  }
+
+  // A node far from every cloud point lies outside the cloud.
+  PointIndex<float> cloud_index(cloud.points);
+  for (size_t v = 0; v < graph.node_count(); ++v) {
+    double gap = std::sqrt(double(cloud_index.nearest(graph.positions[v].cast<float>()).second));
+    if (gap > 3.0 * result.node_radius[v] + 1e-12) {
+      std::ostringstream s;
+      s << source << ": skeleton node " << v + 1 << " at (" << graph.positions[v].transpose() << ") is " << gap
+        << " from the nearest cloud point, far outside the cloud (local radius " << result.node_radius[v] << ")";
+      throw InputError(s.str());
+    }
+  }
+  // Most points far from every bone: the skeleton belongs to another shape.
+  size_t far = 0;
+  for (size_t i = 0; i < n; ++i) far += result.distance[i] > 3.0 * result.bone_radius[result.bone[i]];
+  if (far > n / 5) {
+    throw InputError(source + ": " + std::to_string(100 * far / n) +
+                     "% of the cloud lies far from every bone: the skeleton does not match the cloud");
+  }
+  return result;
+}
+
+}  // namespace mcquad

@@ -1,0 +1,35 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/point_cloud.h"
+#include "skeleton/skeleton_graph.h"
+
+namespace mcquad {
+
+//! Every cloud point assigned to its nearest bone (skeleton edge), with the
+//! projection parameter along the bone and the distance to it; and from
+//! that, robust local radii of the cloud around bones and nodes.
+struct BoneAssignment {
+  std::vector<int> bone;         //!< per point: index into graph.edges
+  std::vector<float> parameter;  //!< per point: projection onto the bone in [0, 1]
+  std::vector<float> distance;   //!< per point: distance to the bone
+  std::vector<double> bone_radius;  //!< median distance of the bone's points
+  std::vector<double> node_radius;  //!< per skeleton node, see assign_points_to_bones
+  std::vector<size_t> bone_point_count;
+};
+
+//! Assigns points to bones and estimates radii. A bone's radius is the median
+//! distance of its points that project inside it (points past its ends belong
+//! to caps and junction blobs); medians keep noise and outliers from moving
+//! it. A node's radius is the mean of its bones' radii, the smallest of them
+//! at a junction. Throws InputError (prefixed by `source`) when the skeleton
+//! does not match the cloud: a bone with no points, a node far outside the
+//! cloud, or most points far from every bone.
+BoneAssignment assign_points_to_bones(const SkeletonGraph& graph, const PointCloud& cloud, const std::string& source);
+
+//! Distance from p to segment [a, b] and the projection parameter in [0, 1].
+double segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double* t);
+
+}  // namespace mcquad

@@ -1,0 +1,93 @@
+/* OpenCL kernels of the Monte Carlo evolution. The host prepends
+ * shared/mcq_platform.h, shared/mcq_philox.h, shared/mcq_cell_tree.h and
+ * shared/mcq_monte_carlo.h (see host/opencl/program_sources.cpp), so these
+ * kernels are thin loops over the same functions the serial path calls. */
+
+/* One Jacobi step: every vertex reads the old positions and normals and
+ * writes its new position; the normals are updated by update_normals after. */
+__kernel void evolve_vertices(__global const float* positions, __global const float* normals,
+                              __global float* new_positions, __global uint* feasible_rays,
+                              __global const float* node_bounds, __global const int* node_children,
+                              __global const uint* cell_offsets, __global const float* points,
+                              const mcq_step_params params, const uint vertex_count) {
+  uint v = get_global_id(0);
+  if (v >= vertex_count) return;
+  mcq_vec3 q = mcq_load3(positions, v);
+  mcq_vec3 n = mcq_load3(normals, v);
+  uint feasible;
+  float delta = mcq_vertex_displacement(node_bounds, node_children, cell_offsets, points, q, n, v, params,
+                                        &feasible);
+  mcq_store3(new_positions, v, mcq_add(q, mcq_scale(n, delta)));
+  feasible_rays[v] = feasible;
+}
+
+__kernel void update_normals(__global const float* positions, __global const uint* faces,
+                             __global const uint* vertex_face_offsets, __global const uint* vertex_faces,
+                             __global float* normals, const uint vertex_count) {
+  uint v = get_global_id(0);
+  if (v >= vertex_count) return;
+  mcq_store3(normals, v, mcq_vertex_normal(positions, faces, vertex_face_offsets, vertex_faces, v));
+}
+
+__kernel void vertex_errors(__global const float* positions, __global const float* node_bounds,
+                            __global const int* node_children, __global const uint* cell_offsets,
+                            __global const float* points, __global const float* cell_centroids,
+                            __global const float* cell_normals, __global float* errors,
+                            const uint vertex_count) {
+  uint v = get_global_id(0);
+  if (v >= vertex_count) return;
+  errors[v] = mcq_vertex_error(node_bounds, node_children, cell_offsets, points, cell_centroids, cell_normals,
+                               mcq_load3(positions, v));
+}
+
+/* Sums `count` floats into partial sums, one per work-group, by a tree
+ * reduction in local memory; called twice (many groups, then one) so only a
+ * single float crosses to the host. */
+__kernel void reduce_sum(__global const float* values, __global float* partial_sums, __local float* scratch,
+                         const uint count) {
+  uint local_id = get_local_id(0);
+  uint group_size = get_local_size(0);
+  float sum = 0.0f;
+  for (uint i = get_global_id(0); i < count; i += get_global_size(0)) sum += values[i];
+  scratch[local_id] = sum;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (uint stride = group_size / 2; stride > 0; stride /= 2) {
+    if (local_id < stride) scratch[local_id] += scratch[local_id + stride];
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (local_id == 0) partial_sums[get_group_id(0)] = scratch[0];
+}
+
+/* Test hooks: expose single shared functions so tests can compare them with
+ * the host build of the same code. */
+__kernel void test_ray_hits(__global const float* origins, __global const float* directions, const float reach,
+                            __global const float* node_bounds, __global const int* node_children,
+                            __global int* cells, const uint count) {
+  uint i = get_global_id(0);
+  if (i >= count) return;
+  float entry;
+  cells[i] = mcq_first_cell_hit(node_bounds, node_children, mcq_load3(origins, i), mcq_load3(directions, i),
+                                reach, &entry);
+}
+
+__kernel void test_philox(__global const uint* counters, __global const uint* keys, __global uint* out,
+                          const uint count) {
+  uint i = get_global_id(0);
+  if (i >= count) return;
+  mcq_philox_block c;
+  for (int k = 0; k < 4; ++k) c.v[k] = counters[4 * i + k];
+  mcq_philox_block r = mcq_philox4x32_10(c, keys[2 * i], keys[2 * i + 1]);
+  for (int k = 0; k < 4; ++k) out[4 * i + k] = r.v[k];
+}
+
+__kernel void test_ray_directions(__global const float* normals, const uint cones, const uint generators,
+                                  const float alpha_max, __global float* directions, const uint count) {
+  uint i = get_global_id(0);
+  if (i >= count) return;
+  mcq_vec3 n = mcq_load3(normals, i);
+  mcq_vec3 ia, ja;
+  mcq_cone_frame(n, &ia, &ja);
+  uint rays = mcq_ray_count(cones, generators);
+  for (uint k = 0; k < rays; ++k)
+    mcq_store3(directions, i * rays + k, mcq_ray_direction(n, ia, ja, k, cones, generators, alpha_max));
+}

@@ -1,0 +1,145 @@
+/* The per-vertex Monte Carlo step of the paper (section 3), its vertex normals
+ * and its error level, written once for the serial path and the kernels. */
+#ifndef MCQ_MONTE_CARLO_H
+#define MCQ_MONTE_CARLO_H
+
+/* Parameters of one step; only 4-byte fields so the layout is identical on
+ * the host and on any OpenCL device (passed by value as a kernel argument). */
+typedef struct {
+  mcq_uint cones;       /* c */
+  mcq_uint generators;  /* r, rays per cone */
+  mcq_uint samples;     /* m, random points per hit cell */
+  mcq_uint seed;
+  mcq_uint iteration;
+  float alpha_max;      /* radians */
+  float epsilon;        /* feasibility bound |d| < epsilon */
+  float reach;          /* rays look for cells up to this distance */
+} mcq_step_params;
+
+/* Orthonormal frame (i', j', k' = n) of the paper's cones. The helper axis is
+ * the world axis least parallel to n: the paper's fixed (1,0,0) degenerates
+ * when n is parallel to x. */
+MCQ_FN void mcq_cone_frame(mcq_vec3 n, mcq_vec3* i_axis, mcq_vec3* j_axis) {
+  float ax = MCQ_FABS(n.x), ay = MCQ_FABS(n.y), az = MCQ_FABS(n.z);
+  mcq_vec3 e = mcq_make_vec3(1.0f, 0.0f, 0.0f);
+  if (ay < ax && ay <= az) e = mcq_make_vec3(0.0f, 1.0f, 0.0f);
+  else if (az < ax && az < ay) e = mcq_make_vec3(0.0f, 0.0f, 1.0f);
+  *j_axis = mcq_normalize(mcq_cross(n, e));
+  *i_axis = mcq_cross(*j_axis, n);
+}
+
+/* Number of rays per vertex: the axis plus r generators on each of c cones. */
+MCQ_FN mcq_uint mcq_ray_count(mcq_uint cones, mcq_uint generators) { return cones * generators + 1; }
+
+/* Unit direction of ray k: k = 0 is the axis n; k = 1 + (l-1)*r + g is
+ * generator g of cone l, at half angle l*alpha_max/c and azimuth 2*pi*g/r. */
+MCQ_FN mcq_vec3 mcq_ray_direction(mcq_vec3 n, mcq_vec3 i_axis, mcq_vec3 j_axis, mcq_uint ray,
+                                  mcq_uint cones, mcq_uint generators, float alpha_max) {
+  if (ray == 0) return n;
+  mcq_uint l = (ray - 1) / generators + 1;
+  mcq_uint g = (ray - 1) % generators;
+  float alpha = (float)l * alpha_max / (float)cones;
+  float azimuth = 6.28318530717958647692f * (float)g / (float)generators;
+  float s = MCQ_SIN(alpha);
+  mcq_vec3 radial = mcq_add(mcq_scale(i_axis, MCQ_COS(azimuth)), mcq_scale(j_axis, MCQ_SIN(azimuth)));
+  return mcq_add(mcq_scale(radial, s), mcq_scale(n, MCQ_COS(alpha)));
+}
+
+/* Index of random sample `sample` of `ray` of `vertex` inside a cell of
+ * `count` points: Philox keyed by (seed, iteration), counter (vertex, ray,
+ * sample / 4), word sample % 4. */
+MCQ_FN mcq_uint mcq_sample_index(mcq_uint seed, mcq_uint iteration, mcq_uint vertex, mcq_uint ray,
+                                 mcq_uint sample, mcq_uint count) {
+  mcq_philox_block counter;
+  counter.v[0] = vertex;
+  counter.v[1] = ray;
+  counter.v[2] = sample / 4u;
+  counter.v[3] = 0u;
+  mcq_philox_block words = mcq_philox4x32_10(counter, seed, iteration);
+  return mcq_uniform_below(words.v[sample % 4u], count);
+}
+
+/* Minimal projection d = min_l (a_l - q) . dir over m random points of the
+ * cell (the paper's d_j). */
+MCQ_FN float mcq_minimal_projection(const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points,
+                                    int cell, mcq_vec3 q, mcq_vec3 dir, mcq_step_params params,
+                                    mcq_uint vertex, mcq_uint ray) {
+  mcq_uint first = cell_offsets[cell];
+  mcq_uint count = cell_offsets[cell + 1] - first;
+  float d = MCQ_INFINITY;
+  /* Draw four samples per Philox call. */
+  for (mcq_uint block = 0; block * 4u < params.samples; ++block) {
+    mcq_philox_block counter;
+    counter.v[0] = vertex;
+    counter.v[1] = ray;
+    counter.v[2] = block;
+    counter.v[3] = 0u;
+    mcq_philox_block words = mcq_philox4x32_10(counter, params.seed, params.iteration);
+    for (mcq_uint w = 0; w < 4u && block * 4u + w < params.samples; ++w) {
+      mcq_uint p = first + mcq_uniform_below(words.v[w], count);
+      d = MCQ_FMIN(d, mcq_dot(mcq_sub(mcq_load3(points, p), q), dir));
+    }
+  }
+  return d;
+}
+
+/* The paper's displacement of one vertex along its normal: the mean of the
+ * feasible minimal projections (|d| < epsilon) over all rays, 0 with none.
+ * *feasible receives how many rays were feasible. */
+MCQ_FN float mcq_vertex_displacement(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
+                                     const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points,
+                                     mcq_vec3 q, mcq_vec3 n, mcq_uint vertex, mcq_step_params params,
+                                     mcq_uint* feasible) {
+  *feasible = 0u;
+  if (mcq_dot(n, n) == 0.0f) return 0.0f;
+  mcq_vec3 i_axis, j_axis;
+  mcq_cone_frame(n, &i_axis, &j_axis);
+  float sum = 0.0f;
+  mcq_uint rays = mcq_ray_count(params.cones, params.generators);
+  for (mcq_uint ray = 0; ray < rays; ++ray) {
+    mcq_vec3 dir = mcq_ray_direction(n, i_axis, j_axis, ray, params.cones, params.generators, params.alpha_max);
+    float entry;
+    int cell = mcq_first_cell_hit(node_bounds, node_children, q, dir, params.reach, &entry);
+    if (cell < 0) continue;
+    float d = mcq_minimal_projection(cell_offsets, points, cell, q, dir, params, vertex, ray);
+    if (MCQ_FABS(d) < params.epsilon) {
+      sum += d;
+      *feasible += 1u;
+    }
+  }
+  return *feasible > 0u ? sum / (float)(*feasible) : 0.0f;
+}
+
+/* Area-weighted average unit normal of a vertex: the sum of its quads' vector
+ * areas (half the cross product of the diagonals, exact for planar quads and
+ * well defined for bent ones), normalized. Zero when degenerate. */
+MCQ_FN mcq_vec3 mcq_vertex_normal(const MCQ_GLOBAL float* positions, const MCQ_GLOBAL mcq_uint* faces,
+                                  const MCQ_GLOBAL mcq_uint* vertex_face_offsets,
+                                  const MCQ_GLOBAL mcq_uint* vertex_faces, mcq_uint vertex) {
+  mcq_vec3 sum = mcq_make_vec3(0.0f, 0.0f, 0.0f);
+  for (mcq_uint k = vertex_face_offsets[vertex]; k < vertex_face_offsets[vertex + 1]; ++k) {
+    mcq_uint f = vertex_faces[k];
+    mcq_vec3 p0 = mcq_load3(positions, faces[4 * f]);
+    mcq_vec3 p1 = mcq_load3(positions, faces[4 * f + 1]);
+    mcq_vec3 p2 = mcq_load3(positions, faces[4 * f + 2]);
+    mcq_vec3 p3 = mcq_load3(positions, faces[4 * f + 3]);
+    sum = mcq_add(sum, mcq_scale(mcq_cross(mcq_sub(p2, p0), mcq_sub(p3, p1)), 0.5f));
+  }
+  return mcq_normalize(sum);
+}
+
+/* The paper's e_i: distance from q to the least-squares plane of the cell
+ * holding q's nearest cloud point. */
+MCQ_FN float mcq_vertex_error(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
+                              const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points,
+                              const MCQ_GLOBAL float* cell_centroids, const MCQ_GLOBAL float* cell_normals,
+                              mcq_vec3 q) {
+  float d2;
+  int cell = mcq_nearest_point_cell(node_bounds, node_children, cell_offsets, points, q, &d2);
+  if (cell < 0) return 0.0f;
+  mcq_vec3 g = mcq_load3(cell_centroids, (mcq_uint)cell);
+  mcq_vec3 t = mcq_load3(cell_normals, (mcq_uint)cell);
+  return MCQ_FABS(mcq_dot(t, mcq_sub(q, g)));
+}
+
+#endif
