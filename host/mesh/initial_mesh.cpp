@@ -295,7 +295,7 @@ QuadMesh to_openmesh(const QuadSoup& soup, const std::string& source) {
   for (const auto& p : soup.vertices) handles.push_back(mesh.add_vertex(QuadMesh::Point(p.x(), p.y(), p.z())));
   for (size_t f = 0; f < soup.quads.size(); ++f) {
     const auto& q = soup.quads[f];
-    auto face = mesh.add_face({handles[q[0]], handles[q[1]], handles[q[2]], handles[q[3]]});
+    auto face = mesh.add_face(std::vector<QuadMesh::VertexHandle>{handles[q[0]], handles[q[1]], handles[q[2]], handles[q[3]]});
     if (!face.is_valid())
       throw UnsupportedError(source + ": the initial mesh construction produced a non-manifold configuration at quad " +
                              std::to_string(f) + " (please report this skeleton)");

@@ -111,6 +111,14 @@ BoneAssignment assign_points_to_bones(const SkeletonGraph& graph, const PointClo
     result.node_radius[v] = graph.kind(int(v)) == NodeKind::kJunction ? smallest : sum / node_bones[v].size();
   }
 
+  // Radii as large as the cloud itself: the bones lie outside it.
+  auto [lo, hi] = bounding_box(cloud);
+  double diagonal = double((hi - lo).norm());
+  for (size_t b = 0; b < bone_count; ++b) {
+    if (result.bone_radius[b] > 0.5 * diagonal)
+      throw InputError(source + ": the cloud lies " + std::to_string(result.bone_radius[b]) +
+                       " from its bones on average, half its own size: the skeleton does not match the cloud");
+  }
   // A node far from every cloud point lies outside the cloud.
   PointIndex<float> cloud_index(cloud.points);
   for (size_t v = 0; v < graph.node_count(); ++v) {

@@ -1,0 +1,121 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "cells/cell_tree.h"
+#include "evolution/shared_math.h"
+
+namespace mcquad {
+namespace {
+
+PointCloud random_cloud(size_t n, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<float> u(-1, 1);
+  PointCloud cloud;
+  for (size_t i = 0; i < n; ++i) cloud.points.emplace_back(u(random), u(random), 0.3f * u(random));
+  return cloud;
+}
+
+device::mcq_vec3 vec(const Eigen::Vector3f& v) { return device::mcq_make_vec3(v.x(), v.y(), v.z()); }
+
+TEST(CellTree, CellsPartitionTheCloudWithTightBoxes) {
+  for (size_t n : {1u, 7u, 100u, 5000u}) {
+    PointCloud cloud = random_cloud(n, 1);
+    CellTree cells = build_cell_tree(cloud, 16);
+    ASSERT_EQ(cells.point_count(), n);
+    std::vector<int> seen(n, 0);
+    for (uint32_t id : cells.point_ids) ++seen[id];
+    for (int s : seen) EXPECT_EQ(s, 1);
+    for (size_t c = 0; c < cells.cell_count(); ++c) {
+      EXPECT_LE(cells.cell_offsets[c + 1] - cells.cell_offsets[c], 16u);
+      EXPECT_GT(cells.cell_offsets[c + 1], cells.cell_offsets[c]);
+    }
+    for (size_t node = 0; node < cells.node_count(); ++node) {
+      int left = cells.node_children[2 * node];
+      if (left >= 0) continue;
+      int cell = -1 - left;
+      const float* b = &cells.node_bounds[6 * node];
+      for (uint32_t p = cells.cell_offsets[cell]; p < cells.cell_offsets[cell + 1]; ++p)
+        for (int k = 0; k < 3; ++k) {
+          EXPECT_GE(cells.points[3 * p + k], b[k]);
+          EXPECT_LE(cells.points[3 * p + k], b[3 + k]);
+        }
+    }
+  }
+}
+
+TEST(CellTree, PlaneNormalsOfPointsDrawnFromKnownPlanes) {
+  std::mt19937 random(3);
+  std::uniform_real_distribution<float> u(-1, 1);
+  Eigen::Vector3f normal = Eigen::Vector3f(1, 2, 3).normalized();
+  Eigen::Vector3f a = normal.unitOrthogonal(), b = normal.cross(a);
+  PointCloud cloud;
+  for (int i = 0; i < 4000; ++i) cloud.points.push_back(Eigen::Vector3f(0.5f, 0, 1) + u(random) * a + u(random) * b);
+  CellTree cells = build_cell_tree(cloud, 20);
+  for (size_t c = 0; c < cells.cell_count(); ++c) {
+    // A plane needs three points; nanoflann's middle split leaves a few
+    // smaller cells, whose normal is arbitrary.
+    if (cells.cell_offsets[c + 1] - cells.cell_offsets[c] < 3) continue;
+    Eigen::Vector3f t(&cells.cell_normals[3 * c]);
+    EXPECT_NEAR(std::abs(t.dot(normal)), 1.0f, 1e-3f);
+  }
+}
+
+TEST(CellTree, NearestPointCellMatchesBruteForce) {
+  PointCloud cloud = random_cloud(3000, 5);
+  CellTree cells = build_cell_tree(cloud, 12);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> u(-1.5, 1.5);
+  for (int q = 0; q < 300; ++q) {
+    Eigen::Vector3f query(u(random), u(random), u(random));
+    float best = INFINITY;
+    for (size_t p = 0; p < cells.point_count(); ++p)
+      best = std::min(best, (Eigen::Vector3f(&cells.points[3 * p]) - query).squaredNorm());
+    float d2;
+    int cell = device::mcq_nearest_point_cell(cells.node_bounds.data(), cells.node_children.data(),
+                                              cells.cell_offsets.data(), cells.points.data(), vec(query), &d2);
+    ASSERT_GE(cell, 0);
+    EXPECT_FLOAT_EQ(d2, best);
+  }
+}
+
+//! Brute force: the entry distance of the ray into every leaf box.
+int first_cell_brute_force(const CellTree& cells, const Eigen::Vector3f& o, const Eigen::Vector3f& d, float reach) {
+  int best = -1;
+  float best_t = reach;
+  device::mcq_vec3 inv = device::mcq_make_vec3(device::mcq_safe_inverse(d.x()), device::mcq_safe_inverse(d.y()),
+                                               device::mcq_safe_inverse(d.z()));
+  for (size_t node = 0; node < cells.node_count(); ++node) {
+    int left = cells.node_children[2 * node];
+    if (left >= 0) continue;
+    float t = device::mcq_ray_box_entry(cells.node_bounds.data(), int(node), vec(o), inv);
+    int cell = -1 - left;
+    if (t >= 0 && t <= reach && (best < 0 || t < best_t || (t == best_t && cell < best))) {
+      best = cell;
+      best_t = t;
+    }
+  }
+  return best;
+}
+
+TEST(CellTree, FirstCellHitMatchesBruteForce) {
+  PointCloud cloud = random_cloud(4000, 11);
+  CellTree cells = build_cell_tree(cloud, 16);
+  std::mt19937 random(13);
+  std::uniform_real_distribution<float> u(-2, 2);
+  int hits = 0;
+  for (int q = 0; q < 500; ++q) {
+    Eigen::Vector3f o(u(random), u(random), u(random));
+    Eigen::Vector3f d = Eigen::Vector3f(u(random), u(random), u(random)).normalized();
+    if (q % 10 == 0) d = Eigen::Vector3f::UnitX();  // axis-parallel rays
+    float reach = q % 2 ? 1.0f : 10.0f;
+    float entry;
+    int cell = device::mcq_first_cell_hit(cells.node_bounds.data(), cells.node_children.data(), vec(o), vec(d), reach, &entry);
+    EXPECT_EQ(cell, first_cell_brute_force(cells, o, d, reach)) << "ray " << q;
+    hits += cell >= 0;
+  }
+  EXPECT_GT(hits, 20);  // the cloud is a thin slab: most random rays miss it
+}
+
+}  // namespace
+}  // namespace mcquad

@@ -1,0 +1,78 @@
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "core/errors.h"
+#include "helpers.h"
+
+namespace mcquad {
+namespace {
+
+struct CliRun {
+  int code;
+  std::string output;
+};
+
+//! Runs the mcquad binary (path from CMake), capturing stdout+stderr.
+CliRun mcquad(const std::string& arguments) {
+  std::string command = std::string(MCQUAD_CLI_PATH) + " " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  char buffer[4096];
+  while (size_t n = fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, n);
+  int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+TEST(Cli, VersionAndHelp) {
+  EXPECT_EQ(mcquad("--version").code, 0);
+  for (const char* sub : {"fit", "init", "generate", "devices", "metrics"}) EXPECT_EQ(mcquad(std::string(sub) + " --help").code, 0) << sub;
+  EXPECT_EQ(mcquad("").code, kExitUsage);
+  EXPECT_EQ(mcquad("fit a.ply").code, kExitUsage);
+}
+
+TEST(Cli, GenerateInitFitMetricsEndToEnd) {
+  test::TempDir dir;
+  CliRun generated = mcquad("generate t-shape -o " + dir.file("") + " --points 15000");
+  ASSERT_EQ(generated.code, 0) << generated.output;
+  std::string points = dir.file("t-shape.ply"), skeleton = dir.file("t-shape.skeleton.obj");
+  CliRun init = mcquad("init " + points + " " + skeleton + " -o " + dir.file("init.obj") + " --stage extruded");
+  EXPECT_EQ(init.code, 0) << init.output;
+  CliRun fit = mcquad("fit " + points + " " + skeleton + " -o " + dir.file("fit.ply") + " --report " + dir.file("r.json") +
+                   " --backend serial --iterations 3 --snapshots " + dir.file("snaps"));
+  ASSERT_EQ(fit.code, 0) << fit.output;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("snaps/iteration-003.obj")));
+  std::ifstream report(dir.file("r.json"));
+  std::stringstream text;
+  text << report.rdbuf();
+  auto json = nlohmann::json::parse(text.str());
+  EXPECT_EQ(json["evolution"]["iterations"].size(), 3u);
+  EXPECT_EQ(json["backend"]["name"], "serial");
+  CliRun metrics = mcquad("metrics " + dir.file("fit.ply") + " " + points + " --skeleton " + skeleton);
+  EXPECT_EQ(metrics.code, 0) << metrics.output;
+  EXPECT_NE(metrics.output.find("euler_characteristic"), std::string::npos);
+}
+
+TEST(Cli, BadInputsGiveOneLineAndDocumentedCodes) {
+  test::TempDir dir;
+  ASSERT_EQ(mcquad("generate tube -o " + dir.file("") + " --points 3000").code, 0);
+  std::string points = dir.file("tube.ply"), skeleton = dir.file("tube.skeleton.obj");
+  std::string bad = dir.write("bad.xyz", "1 2 3\n4 nan 6\n");
+  CliRun r = mcquad("fit " + bad + " " + skeleton + " -o " + dir.file("o.obj"));
+  EXPECT_EQ(r.code, kExitInput);
+  EXPECT_NE(r.output.find(bad), std::string::npos) << r.output;
+  EXPECT_EQ(mcquad("fit " + points + " " + dir.file("none.obj") + " -o " + dir.file("o.obj")).code, kExitInput);
+  EXPECT_EQ(mcquad("fit " + points + " " + skeleton + " -o " + dir.file("nodir/o.obj")).code, kExitOutput);
+  EXPECT_EQ(mcquad("fit " + points + " " + skeleton + " -o " + dir.file("o.stl")).code, kExitOutput);
+  EXPECT_EQ(mcquad("generate nothing -o " + dir.file("")).code, kExitInput);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("o.obj")));
+  CliRun device = mcquad("fit " + points + " " + skeleton + " -o " + dir.file("o.obj") + " --backend opencl --device 99");
+  EXPECT_EQ(device.code, kExitDevice) << device.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("o.obj")));
+}
+
+}  // namespace
+}  // namespace mcquad

@@ -1,0 +1,235 @@
+#include <gtest/gtest.h>
+
+#include "cells/cell_tree.h"
+#include "core/errors.h"
+#include "evolution/evolve.h"
+#include "evolution/serial_backend.h"
+#include "helpers.h"
+#include "mesh/initial_mesh.h"
+#include "mesh/mesh_arrays.h"
+#include "metrics/surface_distance.h"
+#include "skeleton/bone_assignment.h"
+#ifdef MCQUAD_WITH_OPENCL
+#include "opencl/opencl_backend.h"
+#endif
+
+namespace mcquad {
+namespace {
+
+struct Fixture {
+  GeneratedShape shape;
+  SkeletonGraph graph;
+  BoneAssignment bones;
+  InitialMesh initial;
+  CellTree cells;
+  MeshArrays arrays;
+  EvolutionParameters parameters;
+  double radius = 1;
+
+  explicit Fixture(const std::string& name, size_t points)
+      : shape(test::small_shape(name, points)),
+        graph(build_skeleton_graph(shape.skeleton, name)),
+        bones(assign_points_to_bones(graph, shape.cloud, name)),
+        initial(build_initial_mesh(graph, bones, shape.cloud, {}, name)),
+        cells(build_cell_tree(shape.cloud, 24)),
+        arrays(flatten_mesh(initial.mesh)) {
+    std::vector<double> radii = bones.bone_radius;
+    std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
+    radius = radii[radii.size() / 2];
+    parameters.epsilon = 0.6 * radius;
+  }
+
+  std::vector<double> true_surface_distances(const std::vector<float>& positions) const {
+    std::vector<double> out;
+    for (size_t v = 0; v < positions.size() / 3; ++v)
+      out.push_back(std::abs(shape.surface.signed_distance(Eigen::Vector3d(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]))));
+    return out;
+  }
+};
+
+TEST(SerialEvolution, VerticesEndOnTheTrueSurfaceAndCoverTheCloud) {
+  for (const char* name : {"tube", "torus"}) {
+    Fixture f(name, 40000);
+    SerialBackend backend;
+    backend.load(f.cells, f.arrays);
+    EvolutionResult result = evolve(backend, f.parameters);
+    ASSERT_EQ(result.iterations.size(), f.parameters.iterations);
+    EXPECT_LT(result.iterations.back().error_level, 0.2 * result.initial_error_level) << name;
+    DistanceSummary to_surface = summarize_distances(f.true_surface_distances(result.positions));
+    EXPECT_LT(to_surface.mean, 0.03 * f.radius) << name;
+    EXPECT_LT(to_surface.p95, 0.06 * f.radius) << name;
+    QuadMesh mesh = f.initial.mesh;
+    set_positions(mesh, result.positions);
+    std::vector<double> coverage = cloud_to_mesh_distances(mesh, f.shape.cloud);
+    size_t covered = 0;
+    for (double d : coverage) covered += d < 0.05 * f.radius;
+    EXPECT_GT(covered, size_t(0.95 * coverage.size())) << name;
+  }
+}
+
+TEST(SerialEvolution, SameSeedSameResultDifferentSeedDifferent) {
+  Fixture f("tube", 10000);
+  auto run = [&](uint32_t seed) {
+    SerialBackend backend;
+    backend.load(f.cells, f.arrays);
+    EvolutionParameters p = f.parameters;
+    p.seed = seed;
+    p.iterations = 3;
+    return evolve(backend, p).positions;
+  };
+  EXPECT_EQ(run(7), run(7));
+  EXPECT_NE(run(7), run(8));
+}
+
+TEST(SerialEvolution, ToleranceStopsEarly) {
+  Fixture f("tube", 10000);
+  SerialBackend backend;
+  backend.load(f.cells, f.arrays);
+  EvolutionParameters p = f.parameters;
+  p.iterations = 50;
+  p.tolerance = 0.01;
+  EvolutionResult result = evolve(backend, p);
+  EXPECT_LT(result.iterations.size(), 50u);
+}
+
+#ifdef MCQUAD_WITH_OPENCL
+std::unique_ptr<OpenCLBackend> opencl_or_skip() {
+  auto devices = list_devices();
+  if (devices.empty()) {
+    if (test::opencl_required()) ADD_FAILURE() << "no OpenCL device, and CI requires one (install pocl-opencl-icd)";
+    return nullptr;
+  }
+  return std::make_unique<OpenCLBackend>(select_device(""));
+}
+
+#define REQUIRE_OPENCL(backend)                                  \
+  auto backend = opencl_or_skip();                               \
+  if (!backend) {                                                \
+    if (!test::opencl_required()) GTEST_SKIP() << "no OpenCL device"; \
+    return;                                                      \
+  }
+
+TEST(OpenCLParity, OneIterationMatchesTheSerialPath) {
+  REQUIRE_OPENCL(opencl);
+  Fixture f("t-shape", 30000);
+  SerialBackend serial;
+  serial.load(f.cells, f.arrays);
+  opencl->load(f.cells, f.arrays);
+  std::vector<float> normals_serial = serial.normals(), normals_cl = opencl->normals();
+  for (size_t i = 0; i < normals_serial.size(); ++i) ASSERT_NEAR(normals_serial[i], normals_cl[i], 1e-5f);
+  auto params = make_step_params(f.parameters, 0);
+  serial.step(params);
+  opencl->step(params);
+  std::vector<float> a = serial.positions(), b = opencl->positions();
+  size_t differing = 0;
+  for (size_t v = 0; v < a.size() / 3; ++v) {
+    float d = 0;
+    for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(a[3 * v + k] - b[3 * v + k]));
+    differing += d > 1e-4f * float(f.radius);
+  }
+  // Ties in the first cell a ray enters may resolve differently under float
+  // rounding; they must stay a tiny fraction (docs/DESIGN.md).
+  EXPECT_LE(differing, a.size() / 3 / 50) << differing << " of " << a.size() / 3 << " vertices differ";
+  EXPECT_NEAR(serial.error_level(), opencl->error_level(), 1e-4 * f.radius);
+}
+
+TEST(OpenCLParity, TwentyIterationsReachTheSameQuality) {
+  REQUIRE_OPENCL(opencl);
+  Fixture f("torus", 40000);
+  SerialBackend serial;
+  serial.load(f.cells, f.arrays);
+  opencl->load(f.cells, f.arrays);
+  EvolutionResult a = evolve(serial, f.parameters), b = evolve(*opencl, f.parameters);
+  EXPECT_NEAR(a.iterations.back().error_level, b.iterations.back().error_level, 0.1 * a.iterations.back().error_level + 1e-4);
+  DistanceSummary da = summarize_distances(f.true_surface_distances(a.positions));
+  DistanceSummary db = summarize_distances(f.true_surface_distances(b.positions));
+  EXPECT_NEAR(da.mean, db.mean, 0.005 * f.radius);
+}
+
+TEST(OpenCLParity, SameSeedSameResultOnTheDevice) {
+  REQUIRE_OPENCL(opencl);
+  Fixture f("tube", 10000);
+  EvolutionParameters p = f.parameters;
+  p.iterations = 4;
+  opencl->load(f.cells, f.arrays);
+  std::vector<float> first = evolve(*opencl, p).positions;
+  opencl->load(f.cells, f.arrays);
+  EXPECT_EQ(first, evolve(*opencl, p).positions);
+}
+
+TEST(OpenCLKernels, PhiloxRaysAndTraversalMatchTheHost) {
+  REQUIRE_OPENCL(opencl);
+  Fixture f("tube", 8000);
+  opencl->load(f.cells, f.arrays);
+  cl::Context& context = opencl->context();
+  cl::CommandQueue& queue = opencl->queue();
+  // Philox streams.
+  std::vector<uint32_t> counters, keys;
+  for (uint32_t i = 0; i < 64; ++i) {
+    counters.insert(counters.end(), {i, i * 7u, 0xffffffffu - i, 3u});
+    keys.insert(keys.end(), {i * 13u, 99u});
+  }
+  auto input = [&](const auto& data) {
+    return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, data.size() * sizeof(data[0]),
+                      const_cast<void*>(static_cast<const void*>(data.data())));
+  };
+  cl::Buffer c = input(counters), k = input(keys);
+  cl::Buffer out(context, CL_MEM_WRITE_ONLY, counters.size() * 4);
+  cl::Kernel philox(opencl->program(), "test_philox");
+  set_kernel_args(philox, c, k, out, uint32_t(64));
+  queue.enqueueNDRangeKernel(philox, cl::NullRange, cl::NDRange(64));
+  std::vector<uint32_t> device_words(counters.size());
+  queue.enqueueReadBuffer(out, CL_TRUE, 0, device_words.size() * 4, device_words.data());
+  for (uint32_t i = 0; i < 64; ++i) {
+    device::mcq_philox_block block{{counters[4 * i], counters[4 * i + 1], counters[4 * i + 2], counters[4 * i + 3]}};
+    auto host = device::mcq_philox4x32_10(block, keys[2 * i], keys[2 * i + 1]);
+    for (int w = 0; w < 4; ++w) ASSERT_EQ(device_words[4 * i + w], host.v[w]);
+  }
+  // Ray directions and the first cell hit, from the mesh's own vertices.
+  std::vector<float> normals = opencl->normals();
+  uint32_t count = uint32_t(f.arrays.vertex_count());
+  uint32_t rays = device::mcq_ray_count(4, 6);
+  cl::Buffer n = input(normals);
+  cl::Buffer directions(context, CL_MEM_READ_WRITE, size_t(count) * rays * 12);
+  cl::Kernel ray_kernel(opencl->program(), "test_ray_directions");
+  set_kernel_args(ray_kernel, n, 4u, 6u, float(M_PI / 18), directions, count);
+  queue.enqueueNDRangeKernel(ray_kernel, cl::NullRange, cl::NDRange(count));
+  std::vector<float> device_dirs(size_t(count) * rays * 3);
+  queue.enqueueReadBuffer(directions, CL_TRUE, 0, device_dirs.size() * 4, device_dirs.data());
+  for (uint32_t v = 0; v < count; ++v) {
+    device::mcq_vec3 nv = device::mcq_load3(normals.data(), v), ia, ja;
+    device::mcq_cone_frame(nv, &ia, &ja);
+    for (uint32_t r = 0; r < rays; ++r) {
+      device::mcq_vec3 d = device::mcq_ray_direction(nv, ia, ja, r, 4, 6, float(M_PI / 18));
+      ASSERT_NEAR(device_dirs[3 * (v * rays + r)], d.x, 1e-5f);
+      ASSERT_NEAR(device_dirs[3 * (v * rays + r) + 2], d.z, 1e-5f);
+    }
+  }
+  std::vector<float> origins;
+  for (uint32_t v = 0; v < count; ++v)
+    for (uint32_t r = 0; r < rays; ++r) origins.insert(origins.end(), f.arrays.positions.begin() + 3 * v, f.arrays.positions.begin() + 3 * v + 3);
+  cl::Buffer o = input(origins);
+  cl::Buffer bounds = input(f.cells.node_bounds);
+  cl::Buffer children = input(f.cells.node_children);
+  cl::Buffer hits(context, CL_MEM_WRITE_ONLY, size_t(count) * rays * 4);
+  cl::Kernel hit_kernel(opencl->program(), "test_ray_hits");
+  set_kernel_args(hit_kernel, o, directions, float(f.parameters.epsilon), bounds, children, hits, count * rays);
+  queue.enqueueNDRangeKernel(hit_kernel, cl::NullRange, cl::NDRange(size_t(count) * rays));
+  std::vector<int> device_hits(size_t(count) * rays);
+  queue.enqueueReadBuffer(hits, CL_TRUE, 0, device_hits.size() * 4, device_hits.data());
+  size_t differ = 0, hit = 0;
+  for (size_t i = 0; i < device_hits.size(); ++i) {
+    float entry;
+    int host = device::mcq_first_cell_hit(f.cells.node_bounds.data(), f.cells.node_children.data(),
+                                          device::mcq_load3(origins.data(), uint32_t(i)), device::mcq_load3(device_dirs.data(), uint32_t(i)),
+                                          float(f.parameters.epsilon), &entry);
+    differ += host != device_hits[i];
+    hit += host >= 0;
+  }
+  EXPECT_GT(hit, device_hits.size() / 2);
+  EXPECT_LE(differ, device_hits.size() / 500);
+}
+#endif
+
+}  // namespace
+}  // namespace mcquad

@@ -1,0 +1,134 @@
+#include <gtest/gtest.h>
+
+#include "core/errors.h"
+#include "helpers.h"
+#include "mesh/initial_mesh.h"
+#include "metrics/face_intersections.h"
+#include "metrics/mesh_metrics.h"
+#include "skeleton/bone_assignment.h"
+
+namespace mcquad {
+namespace {
+
+struct ShapeCase {
+  std::string name;
+  ShapeOptions options;
+  size_t points;
+};
+
+std::string case_name(const testing::TestParamInfo<ShapeCase>& info) {
+  std::string name = info.param.name + "_" + std::to_string(info.param.options.arms) + "_" +
+                     std::to_string(int(info.param.options.angle_degrees));
+  for (char& c : name)
+    if (!isalnum(static_cast<unsigned char>(c))) c = '_';
+  return name;
+}
+
+class InitialMeshProperties : public testing::TestWithParam<ShapeCase> {};
+
+//! Every property the issue asks of the initial mesh, at two resolutions.
+TEST_P(InitialMeshProperties, HoldOnGeneratedShape) {
+  const ShapeCase& c = GetParam();
+  GeneratedShape shape = test::small_shape(c.name, c.points, c.options);
+  SkeletonGraph graph = build_skeleton_graph(shape.skeleton, c.name);
+  BoneAssignment bones = assign_points_to_bones(graph, shape.cloud, c.name);
+  size_t irregular_at_first_level = 0;
+  for (int level = 0; level < 2; ++level) {
+    InitialMeshOptions options;
+    options.target_vertices = level == 0 ? 1 : 4000;
+    InitialMesh initial = build_initial_mesh(graph, bones, shape.cloud, options, c.name);
+    const QuadMesh& mesh = initial.mesh;
+    MeshStatistics s = mesh_statistics(mesh);
+    EXPECT_EQ(s.quad_fraction, 1.0);
+    EXPECT_EQ(s.non_manifold_vertices, 0u);
+    EXPECT_EQ(s.components, size_t(graph.component_count));
+    long expected_euler = 0;
+    for (int k = 0; k < graph.component_count; ++k) expected_euler += 2 - 2 * graph.independent_cycles(k);
+    expected_euler -= shape.open_ends;
+    EXPECT_EQ(initial.open_ends, shape.open_ends) << "open ends decided from the cloud";
+    EXPECT_EQ(s.euler_characteristic, expected_euler);
+    EXPECT_EQ(s.boundary_loops, size_t(shape.open_ends));
+    // Irregular vertices only where blocks and caps are, and as many at every level.
+    for (int v : irregular_vertices(mesh)) EXPECT_TRUE(initial.irregular_allowed[v]) << "vertex " << v;
+    if (level == 0) irregular_at_first_level = s.irregular_vertices;
+    else EXPECT_EQ(s.irregular_vertices, irregular_at_first_level);
+    EXPECT_EQ(inward_faces(mesh, graph), 0u) << "faces oriented out of the cloud";
+    EXPECT_EQ(intersecting_face_pairs(mesh).size(), 0u);
+    // Inside the cloud: every vertex inside the true surface.
+    for (auto v : mesh.vertices()) {
+      const auto& p = mesh.point(v);
+      EXPECT_LT(shape.surface.signed_distance(Eigen::Vector3d(p[0], p[1], p[2])), 0.0) << "vertex " << v.idx();
+    }
+  }
+}
+
+ShapeOptions with_arms(int arms) {
+  ShapeOptions o;
+  o.arms = arms;
+  return o;
+}
+
+INSTANTIATE_TEST_SUITE_P(Shapes, InitialMeshProperties,
+                         testing::Values(ShapeCase{"t-shape", {}, 20000}, ShapeCase{"tube", {}, 8000},
+                                         ShapeCase{"bent-tube", {}, 12000}, ShapeCase{"torus", {}, 15000},
+                                         ShapeCase{"torus-knot", {}, 60000}, ShapeCase{"tube-frame", {}, 60000},
+                                         ShapeCase{"star", with_arms(3), 20000}, ShapeCase{"star", with_arms(4), 20000},
+                                         ShapeCase{"star", with_arms(5), 20000}),
+                         case_name);
+
+TEST(InitialMesh, SevenArmsFailClearlyNamingTheNode) {
+  SkeletonData skeleton;
+  skeleton.nodes.push_back(Eigen::Vector3d::Zero());
+  for (int k = 0; k < 7; ++k) {
+    double a = 2 * M_PI * k / 7;
+    skeleton.nodes.push_back(Eigen::Vector3d(5 * std::cos(a), 5 * std::sin(a), k % 2 ? 1.0 : -1.0));
+    skeleton.edges.push_back({0, k + 1});
+  }
+  SkeletonGraph graph = build_skeleton_graph(skeleton, "seven.obj");
+  try {
+    std::vector<Eigen::Vector3d> directions;
+    for (int next : graph.neighbours[0]) directions.push_back(graph.positions[next].normalized());
+    PointCloud cloud;
+    for (int k = 1; k <= 7; ++k)
+      for (int s = 0; s < 50; ++s) cloud.points.push_back((graph.positions[k] * (s / 50.0) + Eigen::Vector3d(0, 0, 0.5)).cast<float>());
+    BoneAssignment bones = assign_points_to_bones(graph, cloud, "seven.obj");
+    build_initial_mesh(graph, bones, cloud, {}, "seven.obj");
+    FAIL() << "valence 7 accepted";
+  } catch (const UnsupportedError& e) {
+    EXPECT_NE(std::string(e.what()).find("valence 7"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("node"), std::string::npos) << e.what();
+  } catch (const InputError& e) {
+    FAIL() << e.what();
+  }
+}
+
+TEST(InitialMesh, EndsCanBeForcedOpenOrCapped) {
+  GeneratedShape shape = test::small_shape("t-shape", 20000);
+  SkeletonGraph graph = build_skeleton_graph(shape.skeleton, "t");
+  BoneAssignment bones = assign_points_to_bones(graph, shape.cloud, "t");
+  InitialMeshOptions options;
+  options.ends = EndMode::kCapped;
+  EXPECT_EQ(build_initial_mesh(graph, bones, shape.cloud, options, "t").open_ends, 0);
+  options.ends = EndMode::kOpen;
+  InitialMesh open = build_initial_mesh(graph, bones, shape.cloud, options, "t");
+  EXPECT_EQ(open.open_ends, 3);
+  EXPECT_EQ(mesh_statistics(open.mesh).boundary_loops, 3u);
+}
+
+TEST(InitialMesh, StagesStopEarly) {
+  GeneratedShape shape = test::small_shape("t-shape", 20000);
+  SkeletonGraph graph = build_skeleton_graph(shape.skeleton, "t");
+  BoneAssignment bones = assign_points_to_bones(graph, shape.cloud, "t");
+  InitialMeshOptions options;
+  options.stage = "blocks";
+  InitialMesh blocks = build_initial_mesh(graph, bones, shape.cloud, options, "t");
+  EXPECT_EQ(blocks.mesh.n_faces(), 12u);  // a cube of 6 face groups, 3 taken by bones
+  options.stage = "extruded";
+  InitialMesh extruded = build_initial_mesh(graph, bones, shape.cloud, options, "t");
+  options.stage = "refined";
+  InitialMesh refined = build_initial_mesh(graph, bones, shape.cloud, options, "t");
+  EXPECT_EQ(refined.mesh.n_faces(), extruded.mesh.n_faces() * 16);
+}
+
+}  // namespace
+}  // namespace mcquad

@@ -1,0 +1,75 @@
+#include <gtest/gtest.h>
+
+#include "core/errors.h"
+#include "helpers.h"
+#include "skeleton/bone_assignment.h"
+#include "skeleton/skeleton_graph.h"
+
+namespace mcquad {
+namespace {
+
+SkeletonData skeleton_of(std::vector<Eigen::Vector3d> nodes, std::vector<std::array<int, 2>> edges) {
+  return SkeletonData{std::move(nodes), std::move(edges)};
+}
+
+TEST(SkeletonGraph, ClassifiesNodesAndFindsBranchesAndLoops) {
+  // A T (junction, three ends) plus a separate square loop.
+  SkeletonData data = skeleton_of({{0, 0, 0}, {-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, -2, 0},
+                                   {5, 0, 0}, {6, 0, 0}, {6, 1, 0}, {5, 1, 0}},
+                                  {{0, 1}, {0, 2}, {0, 3}, {3, 4}, {5, 6}, {6, 7}, {7, 8}, {8, 5}});
+  SkeletonGraph graph = build_skeleton_graph(data, "t.obj");
+  EXPECT_EQ(graph.kind(0), NodeKind::kJunction);
+  EXPECT_EQ(graph.kind(1), NodeKind::kEnd);
+  EXPECT_EQ(graph.kind(3), NodeKind::kRegular);
+  EXPECT_EQ(graph.component_count, 2);
+  EXPECT_EQ(graph.independent_cycles(graph.component[0]), 0);
+  EXPECT_EQ(graph.independent_cycles(graph.component[5]), 1);
+  auto branches = graph.branches();
+  ASSERT_EQ(branches.size(), 4u);
+  int loops = 0;
+  for (const auto& b : branches) loops += b.closed;
+  EXPECT_EQ(loops, 1);
+}
+
+TEST(SkeletonGraph, MergesCoincidentNodesAndDuplicateBones) {
+  SkeletonData data = skeleton_of({{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {2, 0, 0}}, {{0, 1}, {2, 3}, {1, 0}});
+  SkeletonGraph graph = build_skeleton_graph(data, "s.cgal");
+  EXPECT_EQ(graph.node_count(), 3u);
+  EXPECT_EQ(graph.edges.size(), 2u);
+}
+
+TEST(SkeletonGraph, RejectsSelfLoopsAndIsolatedNodes) {
+  EXPECT_THROW(build_skeleton_graph(skeleton_of({{0, 0, 0}, {0, 0, 0}}, {{0, 1}}), "s"), InputError);
+  try {
+    build_skeleton_graph(skeleton_of({{0, 0, 0}, {1, 0, 0}, {7, 7, 7}}, {{0, 1}}), "s.obj");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("node 3"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("isolated"), std::string::npos) << e.what();
+  }
+}
+
+TEST(BoneAssignment, RadiiMatchTheGeneratedTubesDespiteNoise) {
+  ShapeOptions options;
+  options.noise = 0.05;
+  GeneratedShape shape = test::small_shape("y-fork", 30000, options);
+  SkeletonGraph graph = build_skeleton_graph(shape.skeleton, "y");
+  BoneAssignment bones = assign_points_to_bones(graph, shape.cloud, "y");
+  for (size_t b = 0; b < graph.edges.size(); ++b) {
+    Eigen::Vector3d middle = 0.5 * (graph.positions[graph.edges[b][0]] + graph.positions[graph.edges[b][1]]);
+    double truth = shape.surface.capsules()[shape.surface.nearest_capsule(middle)].radius;
+    // Bones touching the junction see some of the blob where tubes overlap.
+    EXPECT_NEAR(bones.bone_radius[b], truth, 0.08 * truth) << "bone " << b;
+  }
+}
+
+TEST(BoneAssignment, RejectsSkeletonsThatDoNotMatchTheCloud) {
+  GeneratedShape shape = test::small_shape("tube", 5000);
+  SkeletonGraph far = build_skeleton_graph(skeleton_of({{0, 0, -4}, {0, 0, 4}, {30, 0, 4}}, {{0, 1}, {1, 2}}), "far.obj");
+  EXPECT_THROW(assign_points_to_bones(far, shape.cloud, "far.obj"), InputError);
+  SkeletonGraph other = build_skeleton_graph(skeleton_of({{100, 0, 0}, {101, 0, 0}}, {{0, 1}}), "other.obj");
+  EXPECT_THROW(assign_points_to_bones(other, shape.cloud, "other.obj"), InputError);
+}
+
+}  // namespace
+}  // namespace mcquad
