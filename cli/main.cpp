@@ -37,6 +37,7 @@ struct FitCommand {
   std::string points, skeleton, output, report, backend = "auto", ends = "auto", stage = "refined";
   FitOptions options;
   double alpha_degrees = 10.0;
+  double junction_degrees = 75.0;
 
   void add_options(CLI::App* app, bool evolution) {
     app->add_option("POINTS", points, "point cloud (.ply, .xyz, .txt, .csv, .obj, .off)")->required();
@@ -52,6 +53,10 @@ struct FitCommand {
         ->check(CLI::NonNegativeNumber)->capture_default_str();
     app->add_option("--target-vertices", init.target_vertices, "refine until at least this many vertices (0 = off)")
         ->capture_default_str();
+    app->add_option("--min-junction-angle", junction_degrees,
+                    "junctions whose bones fork more acutely move to where the cloud's tubes part (0 = never)")
+        ->check(CLI::Range(0.0, 120.0))->capture_default_str();
+    app->add_option("--write-skeleton", options.construction_skeleton, "write the skeleton the mesh is built on (OBJ)");
     if (!evolution) {
       app->add_option("--stage", stage, "stop after: blocks, extruded or refined")
           ->check(CLI::IsMember({"blocks", "extruded", "refined"}))->capture_default_str();
@@ -80,6 +85,7 @@ struct FitCommand {
     if (!report.empty()) check_output_path(report, {"json"});
     options.evolve = evolution;
     options.evolution.alpha_max = alpha_degrees * M_PI / 180.0;
+    options.initial.min_junction_angle = junction_degrees * M_PI / 180.0;
     options.backend = backend == "serial" ? BackendKind::kSerial : backend == "opencl" ? BackendKind::kOpenCL : BackendKind::kAuto;
     options.initial.ends = ends == "open" ? EndMode::kOpen : ends == "capped" ? EndMode::kCapped : EndMode::kAuto;
     options.initial.stage = stage;

@@ -52,7 +52,17 @@ TEST_P(InitialMeshProperties, HoldOnGeneratedShape) {
     for (int v : irregular_vertices(mesh)) EXPECT_TRUE(initial.irregular_allowed[v]) << "vertex " << v;
     if (level == 0) irregular_at_first_level = s.irregular_vertices;
     else EXPECT_EQ(s.irregular_vertices, irregular_at_first_level);
-    EXPECT_EQ(inward_faces(mesh, graph), 0u) << "faces oriented out of the cloud";
+    // Oriented out of the cloud: the mesh winds once, positively, around
+    // every node of the skeleton it was built on; and no face folds over.
+    if (shape.open_ends == 0) {
+      const SkeletonGraph& built = initial.skeleton.graph;
+      for (size_t node = 0; node < built.node_count(); ++node)
+        EXPECT_NEAR(winding_number(mesh, built.positions[node]), 1.0, 1e-6) << "node " << node;
+    }
+    EXPECT_EQ(folded_edges(mesh), 0u);
+    // Away from junctions, every face also points away from its bone.
+    if (graph.node_count() == initial.skeleton.graph.node_count())
+      EXPECT_EQ(inward_faces(mesh, graph), 0u) << "faces turned into the tube";
     EXPECT_EQ(intersecting_face_pairs(mesh).size(), 0u);
     // Inside the cloud: every vertex inside the true surface.
     for (auto v : mesh.vertices()) {
@@ -62,6 +72,11 @@ TEST_P(InitialMeshProperties, HoldOnGeneratedShape) {
   }
 }
 
+ShapeOptions with_angle(double angle) {
+  ShapeOptions o;
+  o.angle_degrees = angle;
+  return o;
+}
 ShapeOptions with_arms(int arms) {
   ShapeOptions o;
   o.arms = arms;
@@ -72,8 +87,9 @@ INSTANTIATE_TEST_SUITE_P(Shapes, InitialMeshProperties,
                          testing::Values(ShapeCase{"t-shape", {}, 20000}, ShapeCase{"tube", {}, 8000},
                                          ShapeCase{"bent-tube", {}, 12000}, ShapeCase{"torus", {}, 15000},
                                          ShapeCase{"torus-knot", {}, 60000}, ShapeCase{"tube-frame", {}, 60000},
+                                         ShapeCase{"theta", {}, 20000}, ShapeCase{"y-fork", with_angle(60), 20000},
                                          ShapeCase{"star", with_arms(3), 20000}, ShapeCase{"star", with_arms(4), 20000},
-                                         ShapeCase{"star", with_arms(5), 20000}),
+                                         ShapeCase{"star", with_arms(5), 20000}, ShapeCase{"star", with_arms(6), 20000}),
                          case_name);
 
 TEST(InitialMesh, SevenArmsFailClearlyNamingTheNode) {
@@ -92,7 +108,9 @@ TEST(InitialMesh, SevenArmsFailClearlyNamingTheNode) {
     for (int k = 1; k <= 7; ++k)
       for (int s = 0; s < 50; ++s) cloud.points.push_back((graph.positions[k] * (s / 50.0) + Eigen::Vector3d(0, 0, 0.5)).cast<float>());
     BoneAssignment bones = assign_points_to_bones(graph, cloud, "seven.obj");
-    build_initial_mesh(graph, bones, cloud, {}, "seven.obj");
+    InitialMeshOptions options;
+    options.min_junction_angle = 0;  // keep all seven bones at the node
+    build_initial_mesh(graph, bones, cloud, options, "seven.obj");
     FAIL() << "valence 7 accepted";
   } catch (const UnsupportedError& e) {
     EXPECT_NE(std::string(e.what()).find("valence 7"), std::string::npos) << e.what();

@@ -36,13 +36,13 @@ SweepPath resample_polyline(const std::vector<Eigen::Vector3d>& polyline, int se
 }
 
 std::vector<Eigen::Vector3d> hermite_curve(const Eigen::Vector3d& a, const Eigen::Vector3d& ta, const Eigen::Vector3d& b,
-                                           const Eigen::Vector3d& tb, int samples) {
+                                           const Eigen::Vector3d& tb, int samples, double weight_a, double weight_b) {
   double chord = (b - a).norm();
   std::vector<Eigen::Vector3d> curve;
   for (int k = 0; k <= samples; ++k) {
     double t = double(k) / samples, t2 = t * t, t3 = t2 * t;
-    curve.push_back((2 * t3 - 3 * t2 + 1) * a + (t3 - 2 * t2 + t) * chord * ta + (-2 * t3 + 3 * t2) * b +
-                    (t3 - t2) * chord * tb);
+    curve.push_back((2 * t3 - 3 * t2 + 1) * a + (t3 - 2 * t2 + t) * weight_a * chord * ta + (-2 * t3 + 3 * t2) * b +
+                    (t3 - t2) * weight_b * chord * tb);
   }
   return curve;
 }

@@ -2,20 +2,28 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "core/errors.h"
 #include "core/point_index.h"
 #include "mesh/frames.h"
+#include "evolution/shared_math.h"
 #include "mesh/junction_block.h"
+#include "mesh/mesh_arrays.h"
 #include "mesh/open_ends.h"
 #include "mesh/quad_soup.h"
 #include "mesh/refinement.h"
+#include "metrics/mesh_metrics.h"
+#include "skeleton/acute_junctions.h"
 
 namespace mcquad {
 namespace {
 
 constexpr int kRing = 8;  // vertices around a tube in the rough mesh
+// A tube leaves its port straight for a while before turning toward its bone,
+// so neighbouring ports' tubes do not crowd the block edge between them.
+constexpr double kPortWeight = 1.4;
 
 std::string node_name(const SkeletonGraph& graph, int node) {
   std::ostringstream s;
@@ -56,9 +64,10 @@ std::vector<Eigen::Vector3d> sub_polyline(const std::vector<Eigen::Vector3d>& li
 
 class MeshAssembler {
  public:
-  MeshAssembler(const SkeletonGraph& graph, const BoneAssignment& bones, const PointCloud& cloud,
-                const InitialMeshOptions& options, const std::string& source)
-      : graph_(graph), bones_(bones), cloud_(cloud), options_(options), source_(source), cloud_index_(cloud.points) {}
+  MeshAssembler(const TubeSkeleton& skeleton, const PointCloud& cloud, const InitialMeshOptions& options,
+                const std::string& source)
+      : graph_(skeleton.graph), skeleton_(skeleton), cloud_(cloud), options_(options), source_(source),
+        cloud_index_(cloud.points), spacing_(sample_spacing()) {}
 
   void build_blocks() {
     for (size_t node = 0; node < graph_.node_count(); ++node) {
@@ -79,9 +88,18 @@ class MeshAssembler {
       // A face group's ring lies at about 0.76 of the block's size from its
       // axis; size the block so the ring matches the widest bone's tube.
       double size = largest_ring / 0.76;
-      block_size_[int(node)] = size;
-      std::vector<Port> ports = add_junction_block(soup_, center, size, orientation);
-      for (size_t k = 0; k < ports.size(); ++k) ports_[{int(node), graph_.neighbours[node][k]}] = ports[k];
+      // Where tubes overlap, the cloud can be thinner around the node than
+      // any bone's radius (below a moved crotch): each block vertex stays
+      // at the start fraction of the way to the cloud in its direction.
+      auto reach = [&](const Eigen::Vector3d& direction) {
+        return options_.start_fraction * distance_to_cloud(center, direction, size);
+      };
+      std::vector<Port> ports = add_junction_block(soup_, center, size, orientation, reach);
+      const auto& neighbours = graph_.neighbours[node];
+      for (size_t k = 0; k < ports.size(); ++k) {
+        ports_[{int(node), neighbours[k]}] = ports[k];
+        blend_length_[{int(node), neighbours[k]}] = blend_length(int(node), int(k), directions, ports[k], size);
+      }
     }
   }
 
@@ -95,6 +113,26 @@ class MeshAssembler {
   }
 
   QuadSoup& soup() { return soup_; }
+
+  //! Catmull-Clark cuts corners: in a crease of the cloud (where tubes meet)
+  //! a smoothed vertex can end up outside. Such vertices -- the cloud lies
+  //! behind them along their normal, or nearer than two sample spacings --
+  //! are moved back in along the normal.
+  void keep_inside_cloud(QuadMesh& mesh) const {
+    MeshArrays arrays = flatten_mesh(mesh);
+    double margin = 2.0 * spacing_;
+    for (auto v : mesh.vertices()) {
+      device::mcq_vec3 nv = device::mcq_vertex_normal(arrays.positions.data(), arrays.faces.data(), arrays.vertex_face_offsets.data(),
+                                                      arrays.vertex_faces.data(), uint32_t(v.idx()));
+      Eigen::Vector3d n(nv.x, nv.y, nv.z);
+      const auto& q = mesh.point(v);
+      Eigen::Vector3d p(q[0], q[1], q[2]);
+      Eigen::Vector3d w = cloud_.points[cloud_index_.nearest(p.cast<float>()).first].cast<double>() - p;
+      double ahead = w.dot(n);
+      double shift = ahead < margin ? margin - ahead : 0.0;
+      if (shift > 0) mesh.set_point(v, QuadMesh::Point(p.x() - shift * n.x(), p.y() - shift * n.y(), p.z() - shift * n.z()));
+    }
+  }
   int open_ends() const { return open_ends_; }
 
  private:
@@ -102,15 +140,63 @@ class MeshAssembler {
   double tube_radius(int node, int next) const {
     for (size_t b = 0; b < graph_.edges.size(); ++b) {
       const auto& e = graph_.edges[b];
-      if ((e[0] == node && e[1] == next) || (e[1] == node && e[0] == next)) return options_.start_fraction * bones_.bone_radius[b];
+      if ((e[0] == node && e[1] == next) || (e[1] == node && e[0] == next)) return options_.start_fraction * skeleton_.bone_radius[b];
     }
-    return options_.start_fraction * bones_.node_radius[node];
+    return options_.start_fraction * skeleton_.node_radius[node];
+  }
+
+  //! How far along bone k of a junction its tube rejoins the skeleton: past
+  //! the block, and past where its tube clears every neighbour's (two tubes
+  //! of radii a, b on bones at angle t separate at (a + b) / (2 sin(t/2))).
+  //! The turn from the port's direction to the bone's needs room too: its
+  //! radius of curvature stays well above the ring's radius.
+  double blend_length(int node, int k, const std::vector<Eigen::Vector3d>& directions, const Port& port,
+                      double block_size) const {
+    const auto& neighbours = graph_.neighbours[node];
+    double own = tube_radius(node, neighbours[k]);
+    double turn = std::acos(std::clamp(port.outward.dot(directions[k]), -1.0, 1.0));
+    double length = std::max(1.5 * block_size, block_size + 3.0 * port.radius * turn);
+    for (size_t j = 0; j < directions.size(); ++j) {
+      if (int(j) == k) continue;
+      double angle = std::acos(std::clamp(directions[k].dot(directions[j]), -1.0, 1.0));
+      double clearance = (own + tube_radius(node, neighbours[j])) / (2.0 * std::max(std::sin(angle / 2), 1e-3));
+      length = std::max(length, 1.2 * clearance);
+    }
+    return length;
+  }
+
+  //! Distance from `origin` along `direction` to the cloud, by sphere tracing
+  //! on the distance to the nearest cloud point less the sample spacing (the
+  //! sampled surface may lie that much nearer than its nearest sample).
+  double distance_to_cloud(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double scale) const {
+    double t = 0;
+    for (int step = 0; step < 64; ++step) {
+      Eigen::Vector3f p = (origin + t * direction).cast<float>();
+      double gap = std::sqrt(double(cloud_index_.nearest(p).second)) - 2.0 * spacing_;
+      if (gap < 0.02 * scale) break;
+      t += gap;
+    }
+    return t + 2.0 * spacing_;
+  }
+
+  //! Typical distance between neighbouring cloud points (median over a
+  //! deterministic subsample).
+  double sample_spacing() const {
+    std::vector<double> gaps;
+    size_t stride = std::max<size_t>(1, cloud_.size() / 500);
+    for (size_t i = 0; i < cloud_.size(); i += stride) {
+      auto neighbours = cloud_index_.k_nearest(cloud_.points[i], 2);
+      if (neighbours.size() == 2) gaps.push_back((cloud_.points[neighbours[1]] - cloud_.points[i]).norm());
+    }
+    if (gaps.empty()) return 0.0;
+    std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
+    return gaps[gaps.size() / 2];
   }
 
   bool end_is_open(int node, const Eigen::Vector3d& outward) {
     if (options_.ends == EndMode::kOpen) return true;
     if (options_.ends == EndMode::kCapped) return false;
-    return cloud_is_open_at(cloud_index_, cloud_, graph_.positions[node], outward, bones_.node_radius[node]);
+    return cloud_is_open_at(cloud_index_, cloud_, graph_.positions[node], outward, skeleton_.node_radius[node]);
   }
 
   void sweep_chain(const Branch& branch) {
@@ -125,8 +211,12 @@ class MeshAssembler {
 
     // Centre line: skeleton polyline, with Hermite blends from the ports.
     double length = polyline_length(skeleton);
-    double s0 = start_port ? std::min(1.5 * block_size_.at(first), 0.35 * length) : 0.0;
-    double s1 = end_port ? length - std::min(1.5 * block_size_.at(last), 0.35 * length) : length;
+    // Both blends must fit on the chain, leaving a little of it straight.
+    double blend_in = start_port ? blend_length_.at({first, branch.nodes[1]}) : 0.0;
+    double blend_out = end_port ? blend_length_.at({last, branch.nodes[branch.nodes.size() - 2]}) : 0.0;
+    double fit = std::min(1.0, 0.9 * length / std::max(blend_in + blend_out, 1e-12));
+    double s0 = blend_in * fit;
+    double s1 = length - blend_out * fit;
     std::vector<Eigen::Vector3d> centre;
     if (branch.closed) {
       centre = skeleton;
@@ -134,13 +224,13 @@ class MeshAssembler {
       std::vector<Eigen::Vector3d> middle = sub_polyline(skeleton, s0, s1);
       if (start_port) {
         auto [q, tq] = point_at(skeleton, s0);
-        centre = hermite_curve(start_port->center, start_port->outward, q, tq, 16);
+        centre = hermite_curve(start_port->center, start_port->outward, q, tq, 16, kPortWeight, 2.0 - kPortWeight);
         centre.pop_back();
       }
       centre.insert(centre.end(), middle.begin(), middle.end());
       if (end_port) {
         auto [q, tq] = point_at(skeleton, s1);
-        auto blend = hermite_curve(q, tq, end_port->center, -end_port->outward, 16);
+        auto blend = hermite_curve(q, tq, end_port->center, -end_port->outward, 16, 2.0 - kPortWeight, kPortWeight);
         centre.insert(centre.end(), blend.begin() + 1, blend.end());
       }
     }
@@ -213,7 +303,11 @@ class MeshAssembler {
     Eigen::Vector3d v = path.tangents[k].cross(u[k]);
     for (int i = 0; i < kRing; ++i) {
       double angle = 2.0 * M_PI * i / kRing + twist;
-      ring[i] = soup_.add_vertex(path.points[k] + radius * (std::cos(angle) * u[k] + std::sin(angle) * v));
+      Eigen::Vector3d radial = std::cos(angle) * u[k] + std::sin(angle) * v;
+      // Where the cloud is thinner than the bone's radius (tubes merging
+      // near a junction), the ring follows it at the same start fraction.
+      double reach = options_.start_fraction * distance_to_cloud(path.points[k], radial, radius);
+      ring[i] = soup_.add_vertex(path.points[k] + std::min(radius, reach) * radial);
     }
     return ring;
   }
@@ -277,14 +371,15 @@ class MeshAssembler {
   }
 
   const SkeletonGraph& graph_;
-  const BoneAssignment& bones_;
+  const TubeSkeleton& skeleton_;
   const PointCloud& cloud_;
   const InitialMeshOptions& options_;
   std::string source_;
   PointIndex<float> cloud_index_;
+  double spacing_;
   QuadSoup soup_;
   std::map<std::pair<int, int>, Port> ports_;
-  std::map<int, double> block_size_;
+  std::map<std::pair<int, int>, double> blend_length_;
   int open_ends_ = 0;
 };
 
@@ -309,6 +404,35 @@ double mean_edge_length(const QuadMesh& mesh) {
   return mesh.n_edges() ? sum / mesh.n_edges() : 0.0;
 }
 
+//! Where tubes meet at a junction, refinement can leave a face folded over
+//! its neighbour. Such places are relaxed (umbrella smoothing of the folded
+//! faces' vertices and their neighbours) until no fold is left.
+void relax_folds(QuadMesh& mesh) {
+  for (int round = 0; round < 50; ++round) {
+    std::set<int> region;
+    for (auto e : mesh.edges()) {
+      if (mesh.is_boundary(e) || !is_folded(mesh, e)) continue;
+      for (int side = 0; side < 2; ++side)
+        for (auto v : mesh.fv_range(mesh.face_handle(mesh.halfedge_handle(e, side))))
+          for (auto w : mesh.vv_range(v)) region.insert(w.idx());
+    }
+    if (region.empty()) return;
+    std::vector<std::pair<int, QuadMesh::Point>> moved;
+    for (int i : region) {
+      auto v = mesh.vertex_handle(i);
+      if (mesh.is_boundary(v)) continue;
+      QuadMesh::Point mean(0, 0, 0);
+      int count = 0;
+      for (auto w : mesh.vv_range(v)) {
+        mean += mesh.point(w);
+        ++count;
+      }
+      moved.emplace_back(i, 0.5 * mesh.point(v) + 0.5 * mean / count);
+    }
+    for (const auto& [i, p] : moved) mesh.set_point(mesh.vertex_handle(i), p);
+  }
+}
+
 int refinement_levels(const QuadMesh& mesh, const InitialMeshOptions& options) {
   int levels = 2;  // 8 -> 32 vertices around a tube
   if (options.target_vertices > 0) {
@@ -326,7 +450,8 @@ int refinement_levels(const QuadMesh& mesh, const InitialMeshOptions& options) {
 
 InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment& bones, const PointCloud& cloud,
                                const InitialMeshOptions& options, const std::string& source) {
-  MeshAssembler assembler(graph, bones, cloud, options, source);
+  TubeSkeleton skeleton = spread_acute_junctions(graph, bones, options.min_junction_angle, source);
+  MeshAssembler assembler(skeleton, cloud, options, source);
   assembler.build_blocks();
   InitialMesh result;
   if (options.stage == "blocks") {
@@ -335,11 +460,14 @@ InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment&
     assembler.build_chains();
   }
   result.mesh = to_openmesh(assembler.soup(), source);
+  result.skeleton = std::move(skeleton);
   result.open_ends = assembler.open_ends();
   result.irregular_allowed = assembler.soup().irregular_allowed;
   if (options.stage == "refined") {
     result.refinement_levels = refinement_levels(result.mesh, options);
     refine_catmull_clark(result.mesh, result.refinement_levels);
+    relax_folds(result.mesh);
+    assembler.keep_inside_cloud(result.mesh);
     result.irregular_allowed.resize(result.mesh.n_vertices(), false);
   }
   return result;

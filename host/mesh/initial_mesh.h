@@ -5,6 +5,7 @@
 
 #include "core/point_cloud.h"
 #include "core/quad_mesh.h"
+#include "skeleton/acute_junctions.h"
 #include "skeleton/bone_assignment.h"
 #include "skeleton/skeleton_graph.h"
 
@@ -18,6 +19,9 @@ struct InitialMeshOptions {
   double resolution = 0;         //!< target edge length; 0 = auto (32 vertices around a tube)
   size_t target_vertices = 0;    //!< alternatively, refine until at least this many vertices
   std::string stage = "refined"; //!< stop after "blocks", "extruded" or "refined"
+  //! Junctions whose bones fork more acutely move to where the cloud's tubes
+  //! part (skeleton/acute_junctions.h); 0 keeps every junction where it is.
+  double min_junction_angle = 75.0 * M_PI / 180.0;
 };
 
 struct InitialMesh {
@@ -25,7 +29,7 @@ struct InitialMesh {
   int open_ends = 0;
   int refinement_levels = 0;
   std::vector<bool> irregular_allowed;  //!< per vertex: on a junction block or a cap
-  std::vector<int> nearest_bone;        //!< per vertex of the unrefined mesh's chains (-1 on blocks)
+  TubeSkeleton skeleton;                //!< the skeleton the mesh was built on (acute junctions moved)
 };
 
 //! Builds the paper's rough quad mesh (Fig. 1) automatically: a block of six

@@ -105,14 +105,15 @@ BlockOrientation orient_block(const std::vector<Eigen::Vector3d>& bone_direction
 }
 
 std::vector<Port> add_junction_block(QuadSoup& soup, const Eigen::Vector3d& center, double size,
-                                     const BlockOrientation& orientation) {
+                                     const BlockOrientation& orientation,
+                                     const std::function<double(const Eigen::Vector3d&)>& reach) {
   std::map<std::array<int, 3>, int> grid_vertex;
   auto vertex = [&](const Eigen::Vector3i& g) {
     std::array<int, 3> key{g.x(), g.y(), g.z()};
     auto found = grid_vertex.find(key);
     if (found != grid_vertex.end()) return found->second;
     Eigen::Vector3d direction = orientation.rotation * g.cast<double>().normalized();
-    int id = soup.add_vertex(center + size * direction, true);
+    int id = soup.add_vertex(center + std::min(size, reach(direction)) * direction, true);
     grid_vertex.emplace(key, id);
     return id;
   };

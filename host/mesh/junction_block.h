@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <functional>
 #include <vector>
 
 #include "mesh/quad_soup.h"
@@ -24,7 +25,10 @@ BlockOrientation orient_block(const std::vector<Eigen::Vector3d>& bone_direction
 //! at `center`, its vertices on a sphere of radius `size`, rotated by
 //! `orientation`. The face groups taken by bones are left open; their rings
 //! are returned as ports, in bone order.
+//! `reach(direction)` bounds each vertex's distance from the centre (the
+//! cloud is not round around every junction).
 std::vector<Port> add_junction_block(QuadSoup& soup, const Eigen::Vector3d& center, double size,
-                                     const BlockOrientation& orientation);
+                                     const BlockOrientation& orientation,
+                                     const std::function<double(const Eigen::Vector3d&)>& reach);
 
 }  // namespace mcquad

@@ -60,6 +60,8 @@ MeshStatistics mesh_statistics(const QuadMesh& mesh) {
 
 size_t inward_faces(const QuadMesh& mesh, const SkeletonGraph& skeleton) {
   size_t inward = 0;
+  std::vector<double> distance(skeleton.edges.size());
+  std::vector<Eigen::Vector3d> nearest(skeleton.edges.size());
   for (auto f : mesh.faces()) {
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
     std::vector<Eigen::Vector3d> corners;
@@ -71,21 +73,75 @@ size_t inward_faces(const QuadMesh& mesh, const SkeletonGraph& skeleton) {
     centroid /= double(corners.size());
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();
     for (size_t k = 0; k < corners.size(); ++k) normal += corners[k].cross(corners[(k + 1) % corners.size()]);
-    double best = INFINITY;
-    Eigen::Vector3d nearest = centroid;
-    for (const auto& e : skeleton.edges) {
+    double closest = INFINITY;
+    for (size_t b = 0; b < skeleton.edges.size(); ++b) {
       double t;
-      const auto& a = skeleton.positions[e[0]];
-      const auto& b = skeleton.positions[e[1]];
-      double d = segment_distance(centroid, a, b, &t);
-      if (d < best) {
-        best = d;
-        nearest = a + t * (b - a);
-      }
+      const auto& a = skeleton.positions[skeleton.edges[b][0]];
+      const auto& c = skeleton.positions[skeleton.edges[b][1]];
+      distance[b] = segment_distance(centroid, a, c, &t);
+      nearest[b] = a + t * (c - a);
+      closest = std::min(closest, distance[b]);
     }
-    inward += normal.dot(centroid - nearest) < 0;
+    // "Out of the tube" is the gradient of a smooth minimum of the distances
+    // to the bones: away from the nearest bone along a tube, and out of the
+    // crotch where two bones are about equally near (where the nearest bone
+    // alone would flip between them).
+    double scale = std::max(0.3 * closest, 1e-12);
+    Eigen::Vector3d outward = Eigen::Vector3d::Zero();
+    for (size_t b = 0; b < skeleton.edges.size(); ++b) {
+      if (distance[b] > closest + 8 * scale || distance[b] <= 0) continue;
+      outward += std::exp(-(distance[b] - closest) / scale) * (centroid - nearest[b]) / distance[b];
+    }
+    inward += normal.dot(outward) < 0;
   }
   return inward;
+}
+
+namespace {
+
+Eigen::Vector3d point_of(const QuadMesh& mesh, QuadMesh::VertexHandle v) {
+  const auto& p = mesh.point(v);
+  return Eigen::Vector3d(p[0], p[1], p[2]);
+}
+
+Eigen::Vector3d face_normal(const QuadMesh& mesh, QuadMesh::FaceHandle f) {
+  std::vector<Eigen::Vector3d> corners;
+  for (auto v : mesh.fv_range(f)) corners.push_back(point_of(mesh, v));
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  for (size_t k = 0; k < corners.size(); ++k) normal += corners[k].cross(corners[(k + 1) % corners.size()]);
+  return normal.normalized();
+}
+
+}  // namespace
+
+bool is_folded(const QuadMesh& mesh, QuadMesh::EdgeHandle edge) {
+  if (mesh.is_boundary(edge)) return false;
+  auto f0 = mesh.face_handle(mesh.halfedge_handle(edge, 0));
+  auto f1 = mesh.face_handle(mesh.halfedge_handle(edge, 1));
+  return face_normal(mesh, f0).dot(face_normal(mesh, f1)) < -0.5;
+}
+
+size_t folded_edges(const QuadMesh& mesh) {
+  size_t folded = 0;
+  for (auto e : mesh.edges()) folded += is_folded(mesh, e);
+  return folded;
+}
+
+double winding_number(const QuadMesh& mesh, const Eigen::Vector3d& p) {
+  // Van Oosterom-Strackee solid angle of every triangle.
+  double total = 0;
+  for (auto f : mesh.faces()) {
+    std::vector<Eigen::Vector3d> c;
+    for (auto v : mesh.fv_range(f)) c.push_back(point_of(mesh, v) - p);
+    for (size_t k = 1; k + 1 < c.size(); ++k) {
+      const Eigen::Vector3d &a = c[0], &b = c[k], &d = c[k + 1];
+      double la = a.norm(), lb = b.norm(), ld = d.norm();
+      double numerator = a.dot(b.cross(d));
+      double denominator = la * lb * ld + a.dot(b) * ld + b.dot(d) * la + d.dot(a) * lb;
+      total += 2.0 * std::atan2(numerator, denominator);
+    }
+  }
+  return total / (4.0 * M_PI);
 }
 
 QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, const CellTree& cells,
@@ -103,6 +159,7 @@ QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, co
   }
   m.error_level = mesh.n_vertices() ? sum / mesh.n_vertices() : 0.0;
   if (skeleton) m.inward_faces = long(inward_faces(mesh, *skeleton));
+  m.folded_edges = folded_edges(mesh);
   m.intersecting_face_pairs = intersecting_face_pairs(mesh).size();
   return m;
 }
@@ -125,7 +182,8 @@ nlohmann::json to_json(const QualityMetrics& m) {
                       {"mesh_to_cloud", summary(m.mesh_to_cloud)},
                       {"cloud_to_mesh", summary(m.cloud_to_mesh)},
                       {"error_level", m.error_level},
-                      {"intersecting_face_pairs", m.intersecting_face_pairs}};
+                      {"intersecting_face_pairs", m.intersecting_face_pairs},
+                      {"folded_edges", m.folded_edges}};
   if (m.inward_faces >= 0) j["inward_faces"] = m.inward_faces;
   return j;
 }

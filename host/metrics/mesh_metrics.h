@@ -33,6 +33,7 @@ struct QualityMetrics {
   DistanceSummary mesh_to_cloud, cloud_to_mesh;
   double error_level = 0;          //!< the paper's e-bar
   long inward_faces = -1;          //!< faces whose normal points into the tube (-1: no skeleton)
+  size_t folded_edges = 0;         //!< edges between faces folded over each other
   size_t intersecting_face_pairs = 0;
 };
 
@@ -41,8 +42,21 @@ struct QualityMetrics {
 QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, const CellTree& cells,
                                const SkeletonGraph* skeleton);
 
-//! Faces whose normal points toward the nearest bone instead of away.
+//! Faces whose normal points into the tube: toward the skeleton instead of
+//! away (away from a smooth minimum of the distances to the bones, so a
+//! crotch between bones counts its faces right). Approximate where the mesh
+//! is far from its bones, e.g. around a junction the mesh builder moved.
 size_t inward_faces(const QuadMesh& mesh, const SkeletonGraph& skeleton);
+
+//! Folds: edges whose two faces' normals differ by more than 120 degrees
+//! (a face flipped over its neighbour).
+size_t folded_edges(const QuadMesh& mesh);
+bool is_folded(const QuadMesh& mesh, QuadMesh::EdgeHandle edge);
+
+//! Generalized winding number of the mesh at p (quads split in two
+//! triangles): about 1 inside a closed, outward-oriented mesh, 0 outside,
+//! -1 inside one oriented inward.
+double winding_number(const QuadMesh& mesh, const Eigen::Vector3d& p);
 
 nlohmann::json to_json(const MeshStatistics& statistics);
 nlohmann::json to_json(const QualityMetrics& metrics);

@@ -70,6 +70,10 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
   double median_radius = median_of(bones.bone_radius);
 
   InitialMesh initial = timer.run("initial_mesh", [&] { return build_initial_mesh(graph, bones, cloud, options.initial, skeleton_path); });
+  if (!options.construction_skeleton.empty()) {
+    SkeletonData built{initial.skeleton.graph.positions, initial.skeleton.graph.edges};
+    write_skeleton_obj(options.construction_skeleton, built);
+  }
   FitResult result;
   result.mesh = std::move(initial.mesh);
   CellTree cells = timer.run("cells", [&] { return build_cell_tree(cloud, options.leaf_size); });

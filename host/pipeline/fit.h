@@ -17,6 +17,7 @@ struct FitOptions {
   BackendKind backend = BackendKind::kAuto;
   std::string device;                //!< OpenCL device by index or name
   std::string snapshots_directory;   //!< write the mesh after every iteration here
+  std::string construction_skeleton; //!< write the skeleton the mesh was built on here (OBJ)
   bool evolve = true;                //!< false: stop after the initial mesh (mcquad init)
   bool measure = true;               //!< compute quality metrics for the report
 };

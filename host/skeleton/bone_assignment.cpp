@@ -6,6 +6,7 @@
 
 #include "core/errors.h"
 #include "core/point_index.h"
+#include "skeleton/acute_junctions.h"
 
 namespace mcquad {
 namespace {
@@ -101,15 +102,7 @@ BoneAssignment assign_points_to_bones(const SkeletonGraph& graph, const PointClo
     result.bone_radius[b] = interior[b].size() >= 8 ? median(interior[b]) : median(all[b]);
   }
 
-  result.node_radius.assign(graph.node_count(), 0.0);
-  for (size_t v = 0; v < graph.node_count(); ++v) {
-    double sum = 0, smallest = INFINITY;
-    for (int b : node_bones[v]) {
-      sum += result.bone_radius[b];
-      smallest = std::min(smallest, result.bone_radius[b]);
-    }
-    result.node_radius[v] = graph.kind(int(v)) == NodeKind::kJunction ? smallest : sum / node_bones[v].size();
-  }
+  result.node_radius = node_radii(graph, result.bone_radius);
 
   // Radii as large as the cloud itself: the bones lie outside it.
   auto [lo, hi] = bounding_box(cloud);

@@ -1,0 +1,170 @@
+#include "skeleton/acute_junctions.h"
+
+#include <cmath>
+#include <set>
+
+namespace mcquad {
+namespace {
+
+//! Mutable skeleton: nodes, bones and their radii.
+struct EditableSkeleton {
+  std::vector<Eigen::Vector3d> nodes;
+  std::vector<std::array<int, 2>> edges;
+  std::vector<double> radius;
+  std::vector<bool> removed_edge;
+
+  int edge_between(int a, int b) const {
+    for (size_t e = 0; e < edges.size(); ++e)
+      if (!removed_edge[e] && ((edges[e][0] == a && edges[e][1] == b) || (edges[e][0] == b && edges[e][1] == a))) return int(e);
+    return -1;
+  }
+  void add_edge(int a, int b, double r) {
+    edges.push_back({a, b});
+    radius.push_back(r);
+    removed_edge.push_back(false);
+  }
+};
+
+//! The chain of nodes from junction `start` through `next` to the next
+//! non-regular node (inclusive).
+std::vector<int> chain_from(const SkeletonGraph& graph, int start, int next) {
+  std::vector<int> chain{start, next};
+  while (graph.kind(chain.back()) == NodeKind::kRegular && chain.back() != start) {
+    int current = chain.back(), previous = chain[chain.size() - 2];
+    int a = graph.neighbours[current][0], b = graph.neighbours[current][1];
+    chain.push_back(a == previous ? b : a);
+  }
+  return chain;
+}
+
+double chain_length(const SkeletonGraph& graph, const std::vector<int>& chain) {
+  double length = 0;
+  for (size_t k = 0; k + 1 < chain.size(); ++k) length += (graph.positions[chain[k + 1]] - graph.positions[chain[k]]).norm();
+  return length;
+}
+
+//! Cuts the chain at arc length s: the bones before the cut are removed, a
+//! new node P at the cut keeps the rest attached; returns P.
+int cut_chain(EditableSkeleton& skeleton, const SkeletonGraph& graph, const std::vector<int>& chain, double s) {
+  for (size_t k = 0; k + 1 < chain.size(); ++k) {
+    const Eigen::Vector3d& a = graph.positions[chain[k]];
+    const Eigen::Vector3d& b = graph.positions[chain[k + 1]];
+    double span = (b - a).norm();
+    int edge = skeleton.edge_between(chain[k], chain[k + 1]);
+    skeleton.removed_edge[edge] = true;
+    if (s <= span) {
+      skeleton.nodes.push_back(a + (b - a) * (s / span));
+      int cut = int(skeleton.nodes.size()) - 1;
+      skeleton.add_edge(cut, chain[k + 1], skeleton.radius[edge]);
+      return cut;
+    }
+    s -= span;
+  }
+  return chain.back();
+}
+
+SkeletonGraph rebuild(const EditableSkeleton& skeleton, std::vector<double>& radius, const std::string& source) {
+  // Drop removed bones and the nodes no bone uses any more.
+  std::vector<int> used(skeleton.nodes.size(), 0);
+  for (size_t e = 0; e < skeleton.edges.size(); ++e)
+    if (!skeleton.removed_edge[e]) used[skeleton.edges[e][0]] = used[skeleton.edges[e][1]] = 1;
+  std::vector<int> index(skeleton.nodes.size(), -1);
+  SkeletonData data;
+  for (size_t v = 0; v < skeleton.nodes.size(); ++v) {
+    if (!used[v]) continue;
+    index[v] = int(data.nodes.size());
+    data.nodes.push_back(skeleton.nodes[v]);
+  }
+  radius.clear();
+  for (size_t e = 0; e < skeleton.edges.size(); ++e) {
+    if (skeleton.removed_edge[e]) continue;
+    data.edges.push_back({index[skeleton.edges[e][0]], index[skeleton.edges[e][1]]});
+    radius.push_back(skeleton.radius[e]);
+  }
+  return build_skeleton_graph(data, source, 0.0);
+}
+
+}  // namespace
+
+std::vector<double> node_radii(const SkeletonGraph& graph, const std::vector<double>& bone_radius) {
+  std::vector<double> sum(graph.node_count(), 0.0), smallest(graph.node_count(), INFINITY);
+  for (size_t b = 0; b < graph.edges.size(); ++b) {
+    for (int end : graph.edges[b]) {
+      sum[end] += bone_radius[b];
+      smallest[end] = std::min(smallest[end], bone_radius[b]);
+    }
+  }
+  std::vector<double> radius(graph.node_count());
+  for (size_t v = 0; v < graph.node_count(); ++v)
+    radius[v] = graph.kind(int(v)) == NodeKind::kJunction ? smallest[v] : sum[v] / graph.degree(int(v));
+  return radius;
+}
+
+TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssignment& bones, double min_angle,
+                                    const std::string& source) {
+  TubeSkeleton result{graph, bones.bone_radius, {}};
+  std::set<std::pair<long, long>> kept;  // pairs too short to spread
+  // Junctions this made are not moved again: their fork is as wide as the
+  // crotch allows, and moving them on would only creep into the crotch.
+  std::vector<Eigen::Vector3d> created;
+  auto is_created = [&](const Eigen::Vector3d& p) {
+    for (const auto& c : created)
+      if ((c - p).norm() < 1e-12) return true;
+    return false;
+  };
+  for (int round = 0; round < 64; ++round) {
+    const SkeletonGraph& g = result.graph;
+    int best_node = -1, best_i = -1, best_j = -1;
+    double best_angle = min_angle;
+    for (size_t v = 0; v < g.node_count(); ++v) {
+      if (g.kind(int(v)) != NodeKind::kJunction || is_created(g.positions[v])) continue;
+      const auto& n = g.neighbours[v];
+      for (size_t i = 0; i < n.size(); ++i) {
+        for (size_t j = i + 1; j < n.size(); ++j) {
+          if (kept.count({long(v) * 100000 + n[i], n[j]})) continue;
+          Eigen::Vector3d di = (g.positions[n[i]] - g.positions[v]).normalized();
+          Eigen::Vector3d dj = (g.positions[n[j]] - g.positions[v]).normalized();
+          double angle = std::acos(std::clamp(di.dot(dj), -1.0, 1.0));
+          if (angle < best_angle) {
+            best_angle = angle;
+            best_node = int(v);
+            best_i = n[i];
+            best_j = n[j];
+          }
+        }
+      }
+    }
+    if (best_node < 0) break;
+
+    EditableSkeleton skeleton{g.positions, g.edges, result.bone_radius, std::vector<bool>(g.edges.size(), false)};
+    std::vector<int> chain_i = chain_from(g, best_node, best_i), chain_j = chain_from(g, best_node, best_j);
+    double ri = skeleton.radius[skeleton.edge_between(best_node, best_i)];
+    double rj = skeleton.radius[skeleton.edge_between(best_node, best_j)];
+    double r = 0.5 * (ri + rj);
+    double crotch = r / std::sin(best_angle / 2);          // along the bisector
+    double along = crotch / std::cos(best_angle / 2) + r;  // along each bone, past the crotch
+    if (along > chain_length(g, chain_i) - r || along > chain_length(g, chain_j) - r ||
+        chain_i.back() == chain_j.back()) {
+      kept.insert({long(best_node) * 100000 + best_i, best_j});
+      continue;
+    }
+    Eigen::Vector3d di = (g.positions[best_i] - g.positions[best_node]).normalized();
+    Eigen::Vector3d dj = (g.positions[best_j] - g.positions[best_node]).normalized();
+    skeleton.nodes.push_back(g.positions[best_node] + (di + dj).normalized() * std::max(crotch - r, 0.25 * crotch));
+    int junction = int(skeleton.nodes.size()) - 1;
+    created.push_back(skeleton.nodes.back());
+    int pi = cut_chain(skeleton, g, chain_i, along);
+    int pj = cut_chain(skeleton, g, chain_j, along);
+    skeleton.add_edge(best_node, junction, std::max(ri, rj));
+    skeleton.add_edge(junction, pi, ri);
+    skeleton.add_edge(junction, pj, rj);
+    std::vector<double> radius;
+    result.graph = rebuild(skeleton, radius, source);
+    result.bone_radius = radius;
+    kept.clear();  // node indices changed
+  }
+  result.node_radius = node_radii(result.graph, result.bone_radius);
+  return result;
+}
+
+}  // namespace mcquad

@@ -1,0 +1,31 @@
+#pragma once
+
+#include <vector>
+
+#include "skeleton/bone_assignment.h"
+#include "skeleton/skeleton_graph.h"
+
+namespace mcquad {
+
+//! A skeleton prepared for building the mesh, with a radius per bone and node.
+struct TubeSkeleton {
+  SkeletonGraph graph;
+  std::vector<double> bone_radius;
+  std::vector<double> node_radius;
+};
+
+//! Moves junctions whose bones fork at an acute angle (below `min_angle`,
+//! radians) up to where the cloud's tubes part. Two tubes of radius r on bones
+//! at angle t overlap until about r / sin(t/2) along their bisector, so the
+//! cloud's crotch is there and not at the skeleton's junction node: the two
+//! bones are rejoined at a new junction just below that crotch, fed by a bone
+//! from the old junction. The angle at the new junction is wide enough for a
+//! block's faces. Pairs whose bones are too short to move along are kept.
+TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssignment& bones, double min_angle,
+                                    const std::string& source);
+
+//! Node radii from bone radii: the mean of a node's bones, the smallest of
+//! them at a junction.
+std::vector<double> node_radii(const SkeletonGraph& graph, const std::vector<double>& bone_radius);
+
+}  // namespace mcquad
