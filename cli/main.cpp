@@ -146,7 +146,7 @@ int run_devices() {
 }
 
 int run_metrics(const std::string& mesh_path, const std::string& points_path, const std::string& skeleton_path,
-                size_t leaf_size, const std::string& json_path) {
+                const std::string& surface_path, size_t leaf_size, const std::string& json_path) {
   QuadMesh mesh = read_mesh(mesh_path);
   PointCloud cloud = read_point_cloud(points_path);
   CellTree cells = build_cell_tree(cloud, leaf_size);
@@ -154,6 +154,16 @@ int run_metrics(const std::string& mesh_path, const std::string& points_path, co
   if (!skeleton_path.empty())
     graph = std::make_unique<SkeletonGraph>(build_skeleton_graph(read_skeleton(skeleton_path), skeleton_path));
   nlohmann::json metrics = to_json(measure_quality(mesh, cloud, cells, graph.get()));
+  if (!surface_path.empty()) {
+    nlohmann::json description;
+    try {
+      description = nlohmann::json::parse(read_file(surface_path));
+    } catch (const nlohmann::json::exception& e) {
+      throw InputError(surface_path + ": not valid JSON: " + e.what());
+    }
+    TubeSurface surface = TubeSurface::from_json(description);
+    metrics["true_surface"] = to_json(measure_true_surface_distance(mesh, surface));
+  }
   if (!json_path.empty()) write_text_atomically(json_path, metrics.dump(2) + "\n");
   std::printf("%s\n", metrics.dump(2).c_str());
   return kExitOk;
@@ -189,13 +199,14 @@ int main(int argc, char** argv) {
 
   app.add_subcommand("devices", "list the OpenCL platforms and devices");
 
-  std::string metrics_mesh, metrics_points, metrics_skeleton, metrics_json;
-  size_t metrics_leaf = 24;
+  std::string metrics_mesh, metrics_points, metrics_skeleton, metrics_surface, metrics_json;
+  size_t metrics_leaf = FitOptions().leaf_size;
   auto* metrics_app = app.add_subcommand("metrics", "distances both ways, error level, topology and defects of a mesh");
   metrics_app->add_option("MESH", metrics_mesh, "mesh (.obj, .off, .ply, .om)")->required();
   metrics_app->add_option("POINTS", metrics_points, "point cloud")->required();
   metrics_app->add_option("--skeleton", metrics_skeleton, "skeleton, to count faces turned into the tube");
   metrics_app->add_option("--leaf-size", metrics_leaf, "maximal points per cell (for the error level)")->capture_default_str();
+  metrics_app->add_option("--surface", metrics_surface, "a generated shape's NAME.surface.json: distances to the true surface");
   metrics_app->add_option("--json", metrics_json, "also write the metrics here");
 
   try {
@@ -210,7 +221,7 @@ int main(int argc, char** argv) {
     if (*init_app) return init.run(false);
     if (*generate_app) return run_generate(shape_name, shape_dir, shape_options);
     if (app.got_subcommand("devices")) return run_devices();
-    if (*metrics_app) return run_metrics(metrics_mesh, metrics_points, metrics_skeleton, metrics_leaf, metrics_json);
+    if (*metrics_app) return run_metrics(metrics_mesh, metrics_points, metrics_skeleton, metrics_surface, metrics_leaf, metrics_json);
   } catch (const InputError& e) {
     std::fprintf(stderr, "mcquad: error: %s\n", e.what());
     return kExitInput;

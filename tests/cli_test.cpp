@@ -56,6 +56,30 @@ TEST(Cli, GenerateInitFitMetricsEndToEnd) {
   EXPECT_NE(metrics.output.find("euler_characteristic"), std::string::npos);
 }
 
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+TEST(Cli, SameSeedSameOutputByteForByte) {
+  test::TempDir dir;
+  ASSERT_EQ(mcquad("generate torus -o " + dir.file("") + " --points 8000 --seed 3").code, 0);
+  ASSERT_EQ(mcquad("generate torus -o " + dir.file("again") + " --points 8000 --seed 3").code, 0);
+  EXPECT_EQ(file_bytes(dir.file("torus.ply")), file_bytes(dir.file("again/torus.ply")));
+  std::string inputs = dir.file("torus.ply") + " " + dir.file("torus.skeleton.obj");
+  for (const char* backend : {"serial", "opencl"}) {
+    if (std::string(backend) == "opencl" && !test::opencl_required() && mcquad("devices").code != 0) continue;
+    std::string common = std::string(" --iterations 5 --seed 11 --backend ") + backend;
+    ASSERT_EQ(mcquad("fit " + inputs + " -o " + dir.file("a.ply") + common).code, 0);
+    ASSERT_EQ(mcquad("fit " + inputs + " -o " + dir.file("b.ply") + common).code, 0);
+    EXPECT_EQ(file_bytes(dir.file("a.ply")), file_bytes(dir.file("b.ply"))) << backend;
+    ASSERT_EQ(mcquad("fit " + inputs + " -o " + dir.file("c.ply") + " --iterations 5 --seed 12 --backend " + backend).code, 0);
+    EXPECT_NE(file_bytes(dir.file("a.ply")), file_bytes(dir.file("c.ply"))) << backend;
+  }
+}
+
 TEST(Cli, BadInputsGiveOneLineAndDocumentedCodes) {
   test::TempDir dir;
   ASSERT_EQ(mcquad("generate tube -o " + dir.file("") + " --points 3000").code, 0);

@@ -1,6 +1,8 @@
 #include "cells/cell_tree.h"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
 #include <nanoflann.hpp>
 
 #include "core/errors.h"
@@ -44,7 +46,8 @@ void fit_cell_plane(const float* points, size_t count, float* centroid, float* n
 
 class Flattener {
  public:
-  Flattener(const PointCloud& cloud, const KdTree& tree, CellTree& out) : cloud_(cloud), tree_(tree), out_(out) {}
+  Flattener(const PointCloud& cloud, const KdTree& tree, CellTree& out, float padding)
+      : cloud_(cloud), tree_(tree), out_(out), padding_(padding) {}
 
   //! Appends `node` and its subtree in depth-first order; returns its index.
   int flatten(const KdNode* node, int level) {
@@ -85,6 +88,10 @@ class Flattener {
     return cell;
   }
 
+  //! A leaf's box: tight around its points, then padded by the cloud's
+  //! typical point spacing. Tight boxes of neighbouring patches of a surface
+  //! leave gaps a ray can slip through, and a vertex whose rays all slip
+  //! through never moves; the padding closes the gaps (docs/DESIGN.md).
   void set_bounds(int node, const float* points, size_t count) {
     float* b = &out_.node_bounds[6 * node];
     for (int k = 0; k < 3; ++k) b[k] = b[3 + k] = points[k];
@@ -94,12 +101,32 @@ class Flattener {
         b[3 + k] = std::max(b[3 + k], points[3 * i + k]);
       }
     }
+    for (int k = 0; k < 3; ++k) {
+      b[k] -= padding_;
+      b[3 + k] += padding_;
+    }
   }
 
   const PointCloud& cloud_;
   const KdTree& tree_;
   CellTree& out_;
+  float padding_;
 };
+
+//! Median distance from a point to its nearest neighbour, over a
+//! deterministic subsample of at most about 2000 points.
+double typical_spacing(const PointCloud& cloud, const KdTree& tree) {
+  std::vector<double> gaps;
+  size_t stride = std::max<size_t>(1, cloud.size() / 2000);
+  for (size_t i = 0; i < cloud.size(); i += stride) {
+    uint32_t index[2];
+    float distance2[2];
+    if (tree.knnSearch(cloud.points[i].data(), 2, index, distance2) == 2) gaps.push_back(std::sqrt(double(distance2[1])));
+  }
+  if (gaps.empty()) return 0.0;
+  std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
+  return gaps[gaps.size() / 2];
+}
 
 }  // namespace
 
@@ -108,7 +135,7 @@ size_t CellTree::byte_size() const {
          cell_normals.size() * 4 + node_bounds.size() * 4 + node_children.size() * 4;
 }
 
-CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size) {
+CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size, bool pad_boxes) {
   if (cloud.empty()) throw InputError("cannot build cells: the point cloud is empty");
   if (cloud.size() >= size_t(UINT32_MAX)) throw UnsupportedError("clouds of 2^32 points or more are not supported");
   CloudAdaptor adaptor{cloud};
@@ -118,7 +145,7 @@ CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size) {
   cells.points.reserve(3 * cloud.size());
   cells.point_ids.reserve(cloud.size());
   cells.cell_offsets.push_back(0);
-  Flattener(cloud, tree, cells).flatten(tree.root_node, 0);
+  Flattener(cloud, tree, cells, pad_boxes ? float(typical_spacing(cloud, tree)) : 0.0f).flatten(tree.root_node, 0);
   if (cells.depth > MCQ_MAX_TREE_DEPTH)
     throw UnsupportedError("the cell tree is " + std::to_string(cells.depth) + " levels deep, more than the " +
                            std::to_string(MCQ_MAX_TREE_DEPTH) + " the traversal supports (many duplicate points?)");

@@ -17,7 +17,7 @@ struct CellTree {
   std::vector<uint32_t> cell_offsets;     //!< cell c holds points [offsets[c], offsets[c+1])
   std::vector<float> cell_centroids;      //!< 3 per cell: the paper's g_l
   std::vector<float> cell_normals;        //!< 3 per cell: the paper's t_l (least-squares plane normal)
-  std::vector<float> node_bounds;         //!< 6 per node: tight min xyz, max xyz
+  std::vector<float> node_bounds;         //!< 6 per node: min xyz, max xyz (leaves padded, see build_cell_tree)
   std::vector<int32_t> node_children;     //!< 2 per node; a leaf stores -1 - cell, -1
   int depth = 0;                          //!< longest root-to-leaf path, in edges
 
@@ -27,8 +27,10 @@ struct CellTree {
   size_t byte_size() const;
 };
 
-//! Builds the cells with at most `leaf_size` points each. Throws
-//! UnsupportedError if the tree is deeper than the traversal stack allows.
-CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size);
+//! Builds the cells with at most `leaf_size` points each. Leaf boxes are
+//! padded by the cloud's median nearest-neighbour distance unless
+//! `pad_boxes` is false (the paper's tight boxes). Throws UnsupportedError if the tree is deeper than
+//! the traversal stack allows.
+CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size, bool pad_boxes = true);
 
 }  // namespace mcquad

@@ -164,6 +164,23 @@ QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, co
   return m;
 }
 
+TrueSurfaceDistance measure_true_surface_distance(const QuadMesh& mesh, const TubeSurface& surface) {
+  std::vector<double> absolute, relative;
+  for (auto v : mesh.vertices()) {
+    Eigen::Vector3d p = point_of(mesh, v);
+    int capsule = surface.nearest_capsule(p);
+    double d = std::abs(surface.signed_distance(p));
+    absolute.push_back(d);
+    relative.push_back(d / surface.capsules()[capsule].radius);
+  }
+  return {summarize_distances(absolute), summarize_distances(relative)};
+}
+
+nlohmann::json to_json(const TrueSurfaceDistance& d) {
+  auto summary = [](const DistanceSummary& s) { return nlohmann::json{{"mean", s.mean}, {"p95", s.p95}, {"max", s.max}}; };
+  return {{"absolute", summary(d.absolute)}, {"relative_to_radius", summary(d.relative)}};
+}
+
 nlohmann::json to_json(const MeshStatistics& s) {
   return {{"vertices", s.vertices},
           {"faces", s.faces},

@@ -6,6 +6,7 @@
 #include "cells/cell_tree.h"
 #include "core/point_cloud.h"
 #include "core/quad_mesh.h"
+#include "generate/tube_surface.h"
 #include "metrics/surface_distance.h"
 #include "skeleton/skeleton_graph.h"
 
@@ -58,6 +59,14 @@ bool is_folded(const QuadMesh& mesh, QuadMesh::EdgeHandle edge);
 //! -1 inside one oriented inward.
 double winding_number(const QuadMesh& mesh, const Eigen::Vector3d& p);
 
+//! Distances of the mesh vertices to a generated shape's true surface, in
+//! model units and relative to the local tube radius (the nearest capsule's).
+struct TrueSurfaceDistance {
+  DistanceSummary absolute, relative;
+};
+TrueSurfaceDistance measure_true_surface_distance(const QuadMesh& mesh, const TubeSurface& surface);
+
+nlohmann::json to_json(const TrueSurfaceDistance& distance);
 nlohmann::json to_json(const MeshStatistics& statistics);
 nlohmann::json to_json(const QualityMetrics& metrics);
 
