@@ -19,6 +19,9 @@ class PointIndex {
       : adaptor_{points}, tree_(3, adaptor_, nanoflann::KDTreeSingleIndexAdaptorParams(leaf_size)) {
     tree_.buildIndex();
   }
+  // The tree refers to the adaptor inside this object: never copy or move it.
+  PointIndex(const PointIndex&) = delete;
+  PointIndex& operator=(const PointIndex&) = delete;
 
   //! Index of the nearest point and its squared distance (-1 for an empty index).
   std::pair<long, Scalar> nearest(const Point& query) const {

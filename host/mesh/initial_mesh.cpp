@@ -64,10 +64,10 @@ std::vector<Eigen::Vector3d> sub_polyline(const std::vector<Eigen::Vector3d>& li
 
 class MeshAssembler {
  public:
-  MeshAssembler(const TubeSkeleton& skeleton, const PointCloud& cloud, const InitialMeshOptions& options,
-                const std::string& source)
+  MeshAssembler(const TubeSkeleton& skeleton, const PointCloud& cloud, const PointIndex<float>& cloud_index,
+                const InitialMeshOptions& options, const std::string& source)
       : graph_(skeleton.graph), skeleton_(skeleton), cloud_(cloud), options_(options), source_(source),
-        cloud_index_(cloud.points), spacing_(sample_spacing()) {}
+        cloud_index_(cloud_index), spacing_(sample_spacing()) {}
 
   void build_blocks() {
     for (size_t node = 0; node < graph_.node_count(); ++node) {
@@ -92,7 +92,7 @@ class MeshAssembler {
       // any bone's radius (below a moved crotch): each block vertex stays
       // at the start fraction of the way to the cloud in its direction.
       auto reach = [&](const Eigen::Vector3d& direction) {
-        return options_.start_fraction * distance_to_cloud(center, direction, size);
+        return options_.start_fraction * distance_to_cloud(center, direction, size / options_.start_fraction);
       };
       std::vector<Port> ports = add_junction_block(soup_, center, size, orientation, reach);
       const auto& neighbours = graph_.neighbours[node];
@@ -168,12 +168,13 @@ class MeshAssembler {
   //! Distance from `origin` along `direction` to the cloud, by sphere tracing
   //! on the distance to the nearest cloud point less the sample spacing (the
   //! sampled surface may lie that much nearer than its nearest sample).
-  double distance_to_cloud(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double scale) const {
+  //! Tracing stops once past `enough`: callers only need to know that much.
+  double distance_to_cloud(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double enough) const {
     double t = 0;
-    for (int step = 0; step < 64; ++step) {
+    for (int step = 0; step < 32 && t < enough; ++step) {
       Eigen::Vector3f p = (origin + t * direction).cast<float>();
       double gap = std::sqrt(double(cloud_index_.nearest(p).second)) - 2.0 * spacing_;
-      if (gap < 0.02 * scale) break;
+      if (gap < std::max(0.02 * enough, 0.5 * spacing_)) break;
       t += gap;
     }
     return t + 2.0 * spacing_;
@@ -306,7 +307,7 @@ class MeshAssembler {
       Eigen::Vector3d radial = std::cos(angle) * u[k] + std::sin(angle) * v;
       // Where the cloud is thinner than the bone's radius (tubes merging
       // near a junction), the ring follows it at the same start fraction.
-      double reach = options_.start_fraction * distance_to_cloud(path.points[k], radial, radius);
+      double reach = options_.start_fraction * distance_to_cloud(path.points[k], radial, radius / options_.start_fraction);
       ring[i] = soup_.add_vertex(path.points[k] + std::min(radius, reach) * radial);
     }
     return ring;
@@ -375,7 +376,7 @@ class MeshAssembler {
   const PointCloud& cloud_;
   const InitialMeshOptions& options_;
   std::string source_;
-  PointIndex<float> cloud_index_;
+  const PointIndex<float>& cloud_index_;
   double spacing_;
   QuadSoup soup_;
   std::map<std::pair<int, int>, Port> ports_;
@@ -449,9 +450,12 @@ int refinement_levels(const QuadMesh& mesh, const InitialMeshOptions& options) {
 }  // namespace
 
 InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment& bones, const PointCloud& cloud,
-                               const InitialMeshOptions& options, const std::string& source) {
+                               const InitialMeshOptions& options, const std::string& source,
+                               const PointIndex<float>* cloud_index) {
+  std::unique_ptr<PointIndex<float>> own_index;
+  if (!cloud_index) cloud_index = (own_index = std::make_unique<PointIndex<float>>(cloud.points)).get();
   TubeSkeleton skeleton = spread_acute_junctions(graph, bones, options.min_junction_angle, source);
-  MeshAssembler assembler(skeleton, cloud, options, source);
+  MeshAssembler assembler(skeleton, cloud, *cloud_index, options, source);
   assembler.build_blocks();
   InitialMesh result;
   if (options.stage == "blocks") {

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/point_cloud.h"
+#include "core/point_index.h"
 #include "core/quad_mesh.h"
 #include "skeleton/acute_junctions.h"
 #include "skeleton/bone_assignment.h"
@@ -39,7 +40,9 @@ struct InitialMesh {
 //! with the cyclic offset of least twist, the rest spread along the chain;
 //! ends capped by a face group or left open; then Catmull-Clark refinement.
 //! Errors name the skeleton node (`source` prefixes messages).
+//! `cloud_index` (over cloud.points) is built here when not given.
 InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment& bones, const PointCloud& cloud,
-                               const InitialMeshOptions& options, const std::string& source);
+                               const InitialMeshOptions& options, const std::string& source,
+                               const PointIndex<float>* cloud_index = nullptr);
 
 }  // namespace mcquad

@@ -66,10 +66,11 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
   PointCloud cloud = timer.run("read_points", [&] { return read_point_cloud(points_path); });
   SkeletonData skeleton_data = timer.run("read_skeleton", [&] { return read_skeleton(skeleton_path); });
   SkeletonGraph graph = build_skeleton_graph(skeleton_data, skeleton_path);
-  BoneAssignment bones = timer.run("radius", [&] { return assign_points_to_bones(graph, cloud, skeleton_path); });
+  PointIndex<float> cloud_index = timer.run("point_index", [&] { return PointIndex<float>(cloud.points); });
+  BoneAssignment bones = timer.run("radius", [&] { return assign_points_to_bones(graph, cloud, skeleton_path, &cloud_index); });
   double median_radius = median_of(bones.bone_radius);
 
-  InitialMesh initial = timer.run("initial_mesh", [&] { return build_initial_mesh(graph, bones, cloud, options.initial, skeleton_path); });
+  InitialMesh initial = timer.run("initial_mesh", [&] { return build_initial_mesh(graph, bones, cloud, options.initial, skeleton_path, &cloud_index); });
   if (!options.construction_skeleton.empty()) {
     SkeletonData built{initial.skeleton.graph.positions, initial.skeleton.graph.edges};
     write_skeleton_obj(options.construction_skeleton, built);

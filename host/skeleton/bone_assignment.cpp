@@ -22,7 +22,9 @@ double median(std::vector<float>& values) {
 void sample_bones(const SkeletonGraph& graph, std::vector<Eigen::Vector3d>& samples, std::vector<int>& sample_bone) {
   double total = 0;
   for (const auto& e : graph.edges) total += (graph.positions[e[1]] - graph.positions[e[0]]).norm();
-  double spacing = total / 20000.0;
+  // Spacing fine enough to find the nearest bone's neighbourhood; the exact
+  // bone is then decided against the bones sharing its nodes.
+  double spacing = total / 2000.0;
   for (size_t b = 0; b < graph.edges.size(); ++b) {
     const auto& a = graph.positions[graph.edges[b][0]];
     const auto& c = graph.positions[graph.edges[b][1]];
@@ -44,7 +46,8 @@ double segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, cons
   return (p - (a + s * ab)).norm();
 }
 
-BoneAssignment assign_points_to_bones(const SkeletonGraph& graph, const PointCloud& cloud, const std::string& source) {
+BoneAssignment assign_points_to_bones(const SkeletonGraph& graph, const PointCloud& cloud, const std::string& source,
+                                      const PointIndex<float>* cloud_index) {
   std::vector<Eigen::Vector3d> samples;
   std::vector<int> sample_bone;
   sample_bones(graph, samples, sample_bone);
@@ -113,9 +116,10 @@ BoneAssignment assign_points_to_bones(const SkeletonGraph& graph, const PointClo
                        " from its bones on average, half its own size: the skeleton does not match the cloud");
   }
   // A node far from every cloud point lies outside the cloud.
-  PointIndex<float> cloud_index(cloud.points);
+  std::unique_ptr<PointIndex<float>> own_index;
+  if (!cloud_index) cloud_index = (own_index = std::make_unique<PointIndex<float>>(cloud.points)).get();
   for (size_t v = 0; v < graph.node_count(); ++v) {
-    double gap = std::sqrt(double(cloud_index.nearest(graph.positions[v].cast<float>()).second));
+    double gap = std::sqrt(double(cloud_index->nearest(graph.positions[v].cast<float>()).second));
     if (gap > 3.0 * result.node_radius[v] + 1e-12) {
       std::ostringstream s;
       s << source << ": skeleton node " << v + 1 << " at (" << graph.positions[v].transpose() << ") is " << gap

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/point_cloud.h"
+#include "core/point_index.h"
 #include "skeleton/skeleton_graph.h"
 
 namespace mcquad {
@@ -27,7 +28,9 @@ struct BoneAssignment {
 //! at a junction. Throws InputError (prefixed by `source`) when the skeleton
 //! does not match the cloud: a bone with no points, a node far outside the
 //! cloud, or most points far from every bone.
-BoneAssignment assign_points_to_bones(const SkeletonGraph& graph, const PointCloud& cloud, const std::string& source);
+//! `cloud_index` (over cloud.points) is built here when not given.
+BoneAssignment assign_points_to_bones(const SkeletonGraph& graph, const PointCloud& cloud, const std::string& source,
+                                      const PointIndex<float>* cloud_index = nullptr);
 
 //! Distance from p to segment [a, b] and the projection parameter in [0, 1].
 double segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double* t);
