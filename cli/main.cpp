@@ -49,7 +49,7 @@ struct FitCommand {
         ->check(CLI::IsMember({"auto", "open", "capped"}))->capture_default_str();
     app->add_option("--start-fraction", init.start_fraction, "initial mesh radius as a fraction of the local cloud radius")
         ->check(CLI::Range(0.05, 0.95))->capture_default_str();
-    app->add_option("--resolution", init.resolution, "target edge length of the refined mesh (0 = 32 vertices around a tube)")
+    app->add_option("--resolution", init.resolution, "target edge length of the refined mesh (0 = 16 vertices around a tube)")
         ->check(CLI::NonNegativeNumber)->capture_default_str();
     app->add_option("--target-vertices", init.target_vertices, "refine until at least this many vertices (0 = off)")
         ->capture_default_str();

@@ -30,6 +30,8 @@ class EvolutionBackend {
   //! The paper's error level: mean distance of the vertices to the plane of
   //! the cell holding their nearest cloud point.
   virtual double error_level() = 0;
+  //! Waits until queued device work is done (for timing); no-op on the host.
+  virtual void finish() {}
   //! Current vertex positions (3 floats each), copied back where needed.
   virtual std::vector<float> positions() = 0;
   //! Current vertex normals (3 floats each).

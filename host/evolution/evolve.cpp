@@ -32,10 +32,15 @@ EvolutionResult evolve(EvolutionBackend& backend, const EvolutionParameters& par
   for (unsigned i = 0; i < parameters.iterations; ++i) {
     auto start = Clock::now();
     backend.step(make_step_params(parameters, i));
+    backend.finish();
+    auto stepped = Clock::now();
     IterationRecord record;
     record.iteration = i + 1;
     record.error_level = backend.error_level();
-    record.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    auto end = Clock::now();
+    record.step_seconds = std::chrono::duration<double>(stepped - start).count();
+    record.error_seconds = std::chrono::duration<double>(end - stepped).count();
+    record.seconds = record.step_seconds + record.error_seconds;
     result.iterations.push_back(record);
     progress.update(i + 1);
     if (after_iteration) after_iteration(record, backend);

@@ -13,6 +13,8 @@ struct IterationRecord {
   unsigned iteration = 0;   //!< 1-based
   double error_level = 0;   //!< the paper's e-bar after this iteration
   double seconds = 0;       //!< wall time of the step, normals and error level
+  double step_seconds = 0;  //!< of which the step and the normals
+  double error_seconds = 0; //!< of which the error level
 };
 
 struct EvolutionResult {

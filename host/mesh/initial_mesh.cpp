@@ -435,7 +435,7 @@ void relax_folds(QuadMesh& mesh) {
 }
 
 int refinement_levels(const QuadMesh& mesh, const InitialMeshOptions& options) {
-  int levels = 2;  // 8 -> 32 vertices around a tube
+  int levels = 1;  // 8 -> 16 vertices around a tube (docs/DESIGN.md)
   if (options.target_vertices > 0) {
     levels = 0;
     for (double v = double(mesh.n_vertices()); v < double(options.target_vertices) && levels < 7; v *= 4) ++levels;

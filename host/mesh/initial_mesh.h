@@ -17,7 +17,7 @@ enum class EndMode { kAuto, kOpen, kCapped };
 struct InitialMeshOptions {
   double start_fraction = 0.7;   //!< initial mesh radius as a fraction of the local cloud radius
   EndMode ends = EndMode::kAuto; //!< open/capped ends; auto decides from the cloud
-  double resolution = 0;         //!< target edge length; 0 = auto (32 vertices around a tube)
+  double resolution = 0;         //!< target edge length; 0 = auto (16 vertices around a tube)
   size_t target_vertices = 0;    //!< alternatively, refine until at least this many vertices
   std::string stage = "refined"; //!< stop after "blocks", "extruded" or "refined"
   //! Junctions whose bones fork more acutely move to where the cloud's tubes

@@ -23,11 +23,12 @@ DistanceSummary summarize_distances(std::vector<double> distances) {
 
 std::vector<double> mesh_to_cloud_distances(const QuadMesh& mesh, const PointCloud& cloud) {
   PointIndex<float> index(cloud.points);
-  std::vector<double> out;
-  out.reserve(mesh.n_vertices());
-  for (auto v : mesh.vertices()) {
-    const auto& p = mesh.point(v);
-    out.push_back(std::sqrt(double(index.nearest(Eigen::Vector3f(float(p[0]), float(p[1]), float(p[2]))).second)));
+  std::vector<double> out(mesh.n_vertices());
+  // Host-side measurements use every core (the serial backend stays serial).
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < long(mesh.n_vertices()); ++i) {
+    const auto& p = mesh.point(QuadMesh::VertexHandle(int(i)));
+    out[i] = std::sqrt(double(index.nearest(Eigen::Vector3f(float(p[0]), float(p[1]), float(p[2]))).second));
   }
   return out;
 }
@@ -48,10 +49,11 @@ std::vector<double> cloud_to_mesh_distances(const QuadMesh& mesh, const PointClo
   }
   PointIndex<double> index(centroids);
   std::vector<double> out(cloud.size());
-  for (size_t i = 0; i < cloud.size(); ++i) {
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < long(cloud.size()); ++i) {
     Eigen::Vector3d p = cloud.points[i].cast<double>();
     double best = INFINITY;
-    for (size_t t : index.k_nearest(p, 12))
+    for (size_t t : index.k_nearest(p, 8))
       best = std::min(best, point_triangle_distance(p, triangles[t][0], triangles[t][1], triangles[t][2]));
     out[i] = best;
   }

@@ -8,7 +8,7 @@ namespace {
 
 //! Global size rounded up to a multiple of the work-group size.
 cl::NDRange global_range(size_t items, size_t group) { return cl::NDRange((items + group - 1) / group * group); }
-constexpr size_t kGroupSize = 64;
+constexpr size_t kGroupSize = 32;
 
 }  // namespace
 
@@ -102,6 +102,14 @@ double OpenCLBackend::error_level() {
     return vertex_count_ ? double(total) / vertex_count_ : 0.0;
   } catch (const cl::Error& e) {
     fail("the error level", e);
+  }
+}
+
+void OpenCLBackend::finish() {
+  try {
+    queue_.finish();
+  } catch (const cl::Error& e) {
+    fail("waiting for the device", e);
   }
 }
 

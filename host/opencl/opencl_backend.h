@@ -17,6 +17,7 @@ class OpenCLBackend : public EvolutionBackend {
   void load(const CellTree& cells, const MeshArrays& mesh) override;
   void step(const device::mcq_step_params& params) override;
   double error_level() override;
+  void finish() override;
   std::vector<float> positions() override;
   std::vector<float> normals() override;
 

@@ -112,7 +112,8 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
     set_positions(result.mesh, evolution.positions);
     nlohmann::json iterations = nlohmann::json::array();
     for (const auto& r : evolution.iterations)
-      iterations.push_back({{"iteration", r.iteration}, {"error_level", r.error_level}, {"seconds", r.seconds}});
+      iterations.push_back({{"iteration", r.iteration}, {"error_level", r.error_level}, {"seconds", r.seconds},
+                            {"step_seconds", r.step_seconds}, {"error_seconds", r.error_seconds}});
     report["backend"] = {{"name", backend->name()}, {"device", backend->device_name()}};
     report["evolution"] = {{"initial_error_level", evolution.initial_error_level},
                            {"iterations", iterations},

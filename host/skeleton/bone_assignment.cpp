@@ -67,7 +67,8 @@ BoneAssignment assign_points_to_bones(const SkeletonGraph& graph, const PointClo
   result.bone.resize(n);
   result.parameter.resize(n);
   result.distance.resize(n);
-  for (size_t i = 0; i < n; ++i) {
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < long(n); ++i) {
     Eigen::Vector3d p = cloud.points[i].cast<double>();
     int first = sample_bone[index.nearest(p).first];
     int best = first;

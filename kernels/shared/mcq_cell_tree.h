@@ -30,8 +30,12 @@ MCQ_FN float mcq_safe_inverse(float d) {
   return 1.0f / (MCQ_FABS(d) > 1e-20f ? d : MCQ_COPYSIGN(1e-20f, d));
 }
 
-/* The first cell whose tight box the half-line enters within `reach`; ties in
- * entry distance go to the lower cell index. Returns -1 when none. */
+/* The first cell whose box the half-line enters within `reach`, -1 when
+ * none. Among cells entered at the same distance (a vertex inside several
+ * padded boxes enters them all at 0) the first one the traversal reaches
+ * wins: children are visited nearer first, the left one on equal entry, so
+ * the choice is deterministic and whole subtrees entered no sooner than the
+ * best hit are skipped. */
 MCQ_FN int mcq_first_cell_hit(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
                               mcq_vec3 origin, mcq_vec3 dir, float reach, float* entry) {
   mcq_vec3 inv_dir = mcq_make_vec3(mcq_safe_inverse(dir.x), mcq_safe_inverse(dir.y), mcq_safe_inverse(dir.z));
@@ -49,14 +53,11 @@ MCQ_FN int mcq_first_cell_hit(const MCQ_GLOBAL float* node_bounds, const MCQ_GLO
     --top;
     int node = stack_node[top];
     float t = stack_t[top];
-    if (t > best_t) continue;
+    if (best_cell >= 0 ? t >= best_t : t > best_t) continue;
     int left = node_children[2 * node];
     if (left < 0) {
-      int cell = -1 - left;
-      if (best_cell < 0 || t < best_t || cell < best_cell) {
-        best_t = t;
-        best_cell = cell;
-      }
+      best_t = t;
+      best_cell = -1 - left;
       continue;
     }
     int right = node_children[2 * node + 1];

@@ -17,8 +17,6 @@ typedef ulong mcq_ulong;
 #define MCQ_COS(x) cos(x)
 #define MCQ_COPYSIGN(x, y) copysign(x, y)
 #define MCQ_INFINITY INFINITY
-#define MCQ_FMIN(a, b) fmin(a, b)
-#define MCQ_FMAX(a, b) fmax(a, b)
 #else
 #define MCQ_GLOBAL
 #define MCQ_FN static inline
@@ -30,13 +28,19 @@ typedef std::uint64_t mcq_ulong;
 #define MCQ_COS(x) std::cos(x)
 #define MCQ_COPYSIGN(x, y) std::copysign(x, y)
 #define MCQ_INFINITY std::numeric_limits<float>::infinity()
-#define MCQ_FMIN(a, b) std::fmin(a, b)
-#define MCQ_FMAX(a, b) std::fmax(a, b)
 #endif
+
+/* min/max as plain comparisons, identical on host and device (no NaN ever
+ * reaches them: directions use safe inverses) and inlined, unlike libm's. */
 
 /* Traversal stack depth; the host refuses trees deeper than this. */
 #define MCQ_MAX_TREE_DEPTH 60
 #define MCQ_STACK_SIZE 64
+
+MCQ_FN float mcq_min(float a, float b) { return a < b ? a : b; }
+MCQ_FN float mcq_max(float a, float b) { return a > b ? a : b; }
+#define MCQ_FMIN(a, b) mcq_min(a, b)
+#define MCQ_FMAX(a, b) mcq_max(a, b)
 
 typedef struct {
   float x, y, z;
