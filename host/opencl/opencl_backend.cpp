@@ -8,7 +8,7 @@ namespace {
 
 //! Global size rounded up to a multiple of the work-group size.
 cl::NDRange global_range(size_t items, size_t group) { return cl::NDRange((items + group - 1) / group * group); }
-constexpr size_t kGroupSize = 32;
+constexpr size_t kGroupSize = 64;
 
 }  // namespace
 

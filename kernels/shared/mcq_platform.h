@@ -34,8 +34,8 @@ typedef std::uint64_t mcq_ulong;
  * reaches them: directions use safe inverses) and inlined, unlike libm's. */
 
 /* Traversal stack depth; the host refuses trees deeper than this. */
-#define MCQ_MAX_TREE_DEPTH 60
-#define MCQ_STACK_SIZE 64
+#define MCQ_MAX_TREE_DEPTH 46
+#define MCQ_STACK_SIZE 48
 
 MCQ_FN float mcq_min(float a, float b) { return a < b ? a : b; }
 MCQ_FN float mcq_max(float a, float b) { return a > b ? a : b; }
