@@ -1,5 +1,7 @@
 #include "pipeline/fit.h"
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
@@ -125,6 +127,9 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
     report["metrics"] = timer.run("metrics", [&] { return to_json(measure_quality(result.mesh, cloud, cells, &graph)); });
   }
   report["timings_seconds"] = timer.seconds;
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  report["peak_resident_megabytes"] = double(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
   report["version"] = MCQUAD_VERSION;
   result.report = std::move(report);
   return result;
