@@ -34,7 +34,7 @@ void check_output_path(const std::string& path, const std::vector<std::string>& 
 }
 
 struct FitCommand {
-  std::string points, skeleton, output, report, backend = "auto", ends = "auto", stage = "refined";
+  std::string points, skeleton, output, report, backend = "auto", ends = "auto", stage = "refined", mode = "robust";
   FitOptions options;
   double alpha_degrees = 10.0;
   double junction_degrees = 75.0;
@@ -66,6 +66,10 @@ struct FitCommand {
     app->add_option("--backend", backend, "auto (OpenCL if a device exists), serial or opencl")
         ->check(CLI::IsMember({"auto", "serial", "opencl"}))->capture_default_str();
     app->add_option("--device", options.device, "OpenCL device index or name (default: $MCQUAD_DEVICE, else first GPU, else first device)");
+    app->add_option("--mode", mode, "robust (improvements over the paper, docs/DESIGN.md) or paper (the paper's step exactly)")
+        ->check(CLI::IsMember({"robust", "paper"}))->capture_default_str();
+    app->add_option("--relaxation", e.relaxation, "robust mode: tangential relaxation weight before each step (0 = off)")
+        ->check(CLI::Range(0.0, 1.0))->capture_default_str();
     app->add_option("--iterations", e.iterations, "maximal number of iterations")->capture_default_str();
     app->add_option("--tolerance", e.tolerance, "stop when the error level improves by less than this fraction (0 = never)")
         ->check(CLI::NonNegativeNumber)->capture_default_str();
@@ -85,6 +89,7 @@ struct FitCommand {
     if (!report.empty()) check_output_path(report, {"json"});
     options.evolve = evolution;
     options.evolution.alpha_max = alpha_degrees * M_PI / 180.0;
+    options.evolution.mode = mode == "paper" ? EvolutionParameters::Mode::kPaper : EvolutionParameters::Mode::kRobust;
     options.initial.min_junction_angle = junction_degrees * M_PI / 180.0;
     options.backend = backend == "serial" ? BackendKind::kSerial : backend == "opencl" ? BackendKind::kOpenCL : BackendKind::kAuto;
     options.initial.ends = ends == "open" ? EndMode::kOpen : ends == "capped" ? EndMode::kCapped : EndMode::kAuto;

@@ -7,18 +7,27 @@
  * writes its new position; the normals are updated by update_normals after. */
 __kernel void evolve_vertices(__global const float* positions, __global const float* normals,
                               __global float* new_positions, __global uint* feasible_rays,
-                              __global const float* node_bounds, __global const int* node_children,
-                              __global const uint* cell_offsets, __global const float* points,
-                              const mcq_step_params params, const uint vertex_count) {
+                              __global const uint* faces, __global const uint* vertex_face_offsets,
+                              __global const uint* vertex_faces, __global const float* node_bounds,
+                              __global const int* node_children, __global const uint* cell_offsets,
+                              __global const float* points, const mcq_step_params params, const uint vertex_count) {
   uint v = get_global_id(0);
   if (v >= vertex_count) return;
-  mcq_vec3 q = mcq_load3(positions, v);
-  mcq_vec3 n = mcq_load3(normals, v);
   uint feasible;
-  float delta = mcq_vertex_displacement(node_bounds, node_children, cell_offsets, points, q, n, v, params,
-                                        &feasible);
-  mcq_store3(new_positions, v, mcq_add(q, mcq_scale(n, delta)));
+  mcq_store3(new_positions, v,
+             mcq_evolve_vertex(positions, normals, faces, vertex_face_offsets, vertex_faces, node_bounds, node_children,
+                               cell_offsets, points, v, params, &feasible));
   feasible_rays[v] = feasible;
+}
+
+__kernel void relax_tangentially(__global const float* positions, __global const float* normals,
+                                 __global const uint* faces, __global const uint* vertex_face_offsets,
+                                 __global const uint* vertex_faces, __global const uint* boundary,
+                                 __global float* new_positions, const float weight, const uint vertex_count) {
+  uint v = get_global_id(0);
+  if (v >= vertex_count) return;
+  mcq_store3(new_positions, v,
+             mcq_relaxed_position(positions, normals, faces, vertex_face_offsets, vertex_faces, boundary, v, weight));
 }
 
 __kernel void update_normals(__global const float* positions, __global const uint* faces,

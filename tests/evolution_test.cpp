@@ -7,6 +7,8 @@
 #include "helpers.h"
 #include "mesh/initial_mesh.h"
 #include "mesh/mesh_arrays.h"
+#include "metrics/face_intersections.h"
+#include "metrics/mesh_metrics.h"
 #include "metrics/surface_distance.h"
 #include "pipeline/fit.h"
 #include "skeleton/bone_assignment.h"
@@ -105,6 +107,26 @@ TEST(SerialEvolution, ToleranceStopsEarly) {
   EXPECT_LT(result.iterations.size(), 50u);
 }
 
+//! Robust mode (the default) against the paper's step at the T's concave
+//! creases, where the paper's vertices fold their quads and cross.
+TEST(RobustMode, FoldsAndCrossesLessThanThePaperAtCreases) {
+  Fixture f("t-shape", 30000);
+  auto run = [&](EvolutionParameters::Mode mode) {
+    SerialBackend backend;
+    backend.load(f.cells, f.arrays);
+    EvolutionParameters p = f.parameters;
+    p.mode = mode;
+    QuadMesh mesh = f.initial.mesh;
+    set_positions(mesh, evolve(backend, p).positions);
+    return std::make_pair(intersecting_face_pairs(mesh).size(), folded_edges(mesh));
+  };
+  auto paper = run(EvolutionParameters::Mode::kPaper);
+  auto robust = run(EvolutionParameters::Mode::kRobust);
+  EXPECT_GT(paper.first, 0u) << "the paper's step crosses at the creases";
+  EXPECT_LT(robust.first, paper.first);
+  EXPECT_LE(robust.second, paper.second);
+}
+
 #ifdef MCQUAD_WITH_OPENCL
 std::unique_ptr<OpenCLBackend> opencl_or_skip() {
   auto devices = list_devices();
@@ -144,6 +166,31 @@ TEST(OpenCLParity, OneIterationMatchesTheSerialPath) {
   // rounding; they must stay a tiny fraction (docs/DESIGN.md).
   EXPECT_LE(differing, a.size() / 3 / 50) << differing << " of " << a.size() / 3 << " vertices differ";
   EXPECT_NEAR(serial.error_level(), opencl->error_level(), 1e-4 * f.radius);
+}
+
+TEST(OpenCLParity, RelaxationAndPaperModeMatchTheSerialPath) {
+  REQUIRE_OPENCL(opencl);
+  Fixture f("t-shape", 20000);
+  for (double relaxation : {0.0, 0.5}) {
+    for (auto mode : {EvolutionParameters::Mode::kPaper, EvolutionParameters::Mode::kRobust}) {
+      EvolutionParameters p = f.parameters;
+      p.mode = mode;
+      p.relaxation = relaxation;
+      SerialBackend serial;
+      serial.load(f.cells, f.arrays);
+      opencl->load(f.cells, f.arrays);
+      serial.step(make_step_params(p, 0));
+      opencl->step(make_step_params(p, 0));
+      std::vector<float> a = serial.positions(), b = opencl->positions();
+      size_t differing = 0;
+      for (size_t v = 0; v < a.size() / 3; ++v) {
+        float d = 0;
+        for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(a[3 * v + k] - b[3 * v + k]));
+        differing += d > 1e-4f * float(f.radius);
+      }
+      EXPECT_LE(differing, a.size() / 3 / 50) << "relaxation " << relaxation;
+    }
+  }
 }
 
 TEST(OpenCLParity, TwentyIterationsReachTheSameQuality) {

@@ -17,6 +17,12 @@ struct EvolutionParameters {
   unsigned iterations = 20;           //!< iteration cap
   double tolerance = 0.0;             //!< stop when the error level improves by less (relative); 0 = never
   uint32_t seed = 1;
+  //! kRobust (default) adds the improvements over the paper (docs/DESIGN.md);
+  //! kPaper is the paper's step exactly.
+  enum class Mode { kPaper, kRobust } mode = Mode::kRobust;
+  //! Robust mode: weight of a tangential relaxation before each step (0 =
+  //! off; docs/DESIGN.md has its mixed effect).
+  double relaxation = 0.0;
 };
 
 }  // namespace mcquad

@@ -18,6 +18,9 @@ device::mcq_step_params make_step_params(const EvolutionParameters& parameters, 
   // The paper: epsilon "determines the maximal distance of the acceptable
   // point cells" -- rays look no further than that.
   params.reach = float(parameters.epsilon);
+  bool robust = parameters.mode == EvolutionParameters::Mode::kRobust;
+  params.fold_guard = robust ? 1u : 0u;
+  params.relaxation = robust ? float(parameters.relaxation) : 0.0f;
   return params;
 }
 

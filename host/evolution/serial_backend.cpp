@@ -18,15 +18,26 @@ void SerialBackend::update_normals() {
                                                  mesh_.vertex_faces.data(), v));
 }
 
+void SerialBackend::relax(float weight) {
+  for (uint32_t v = 0; v < mesh_.vertex_count(); ++v)
+    device::mcq_store3(next_positions_.data(), v,
+                       device::mcq_relaxed_position(positions_.data(), normals_.data(), mesh_.faces.data(),
+                                                    mesh_.vertex_face_offsets.data(), mesh_.vertex_faces.data(),
+                                                    mesh_.boundary.data(), v, weight));
+  positions_.swap(next_positions_);
+  update_normals();
+}
+
 void SerialBackend::step(const device::mcq_step_params& params) {
+  if (params.relaxation > 0.0f) relax(params.relaxation);
   for (uint32_t v = 0; v < mesh_.vertex_count(); ++v) {
-    device::mcq_vec3 q = device::mcq_load3(positions_.data(), v);
-    device::mcq_vec3 n = device::mcq_load3(normals_.data(), v);
     uint32_t feasible;
-    float delta = device::mcq_vertex_displacement(cells_->node_bounds.data(), cells_->node_children.data(),
-                                                  cells_->cell_offsets.data(), cells_->points.data(), q, n, v, params,
-                                                  &feasible);
-    device::mcq_store3(next_positions_.data(), v, device::mcq_add(q, device::mcq_scale(n, delta)));
+    device::mcq_store3(next_positions_.data(), v,
+                       device::mcq_evolve_vertex(positions_.data(), normals_.data(), mesh_.faces.data(),
+                                                 mesh_.vertex_face_offsets.data(), mesh_.vertex_faces.data(),
+                                                 cells_->node_bounds.data(), cells_->node_children.data(),
+                                                 cells_->cell_offsets.data(), cells_->points.data(), v, params,
+                                                 &feasible));
   }
   positions_.swap(next_positions_);
   update_normals();

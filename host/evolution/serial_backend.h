@@ -18,6 +18,7 @@ class SerialBackend : public EvolutionBackend {
 
  private:
   void update_normals();
+  void relax(float weight);
 
   const CellTree* cells_ = nullptr;
   MeshArrays mesh_;

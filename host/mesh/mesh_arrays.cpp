@@ -10,6 +10,7 @@ MeshArrays flatten_mesh(const QuadMesh& mesh) {
   for (auto v : mesh.vertices()) {
     const auto& p = mesh.point(v);
     arrays.positions.insert(arrays.positions.end(), {float(p[0]), float(p[1]), float(p[2])});
+    arrays.boundary.push_back(mesh.is_boundary(v) ? 1u : 0u);
   }
   std::vector<uint32_t> counts(mesh.n_vertices() + 1, 0);
   for (auto f : mesh.faces()) {

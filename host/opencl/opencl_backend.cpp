@@ -21,6 +21,7 @@ OpenCLBackend::OpenCLBackend(const DeviceInfo& device) : device_(device) {
     normals_kernel_ = cl::Kernel(program_, "update_normals");
     errors_kernel_ = cl::Kernel(program_, "vertex_errors");
     reduce_kernel_ = cl::Kernel(program_, "reduce_sum");
+    relax_kernel_ = cl::Kernel(program_, "relax_tangentially");
   } catch (const cl::Error& e) {
     fail("setting up", e);
   }
@@ -52,6 +53,7 @@ void OpenCLBackend::load(const CellTree& cells, const MeshArrays& mesh) {
     faces_ = upload(mesh.faces);
     vertex_face_offsets_ = upload(mesh.vertex_face_offsets);
     vertex_faces_ = upload(mesh.vertex_faces);
+    boundary_ = upload(mesh.boundary);
     positions_ = upload(mesh.positions, CL_MEM_READ_WRITE);
     next_positions_ = cl::Buffer(context_, CL_MEM_READ_WRITE, std::max<size_t>(mesh.positions.size(), 1) * 4);
     normals_ = cl::Buffer(context_, CL_MEM_READ_WRITE, std::max<size_t>(mesh.positions.size(), 1) * 4);
@@ -77,8 +79,15 @@ void OpenCLBackend::run_normals() {
 
 void OpenCLBackend::step(const device::mcq_step_params& params) {
   try {
-    set_kernel_args(evolve_kernel_, positions_, normals_, next_positions_, feasible_, node_bounds_, node_children_,
-                    cell_offsets_, points_, params, vertex_count_);
+    if (params.relaxation > 0.0f) {
+      set_kernel_args(relax_kernel_, positions_, normals_, faces_, vertex_face_offsets_, vertex_faces_, boundary_,
+                      next_positions_, params.relaxation, vertex_count_);
+      queue_.enqueueNDRangeKernel(relax_kernel_, cl::NullRange, global_range(vertex_count_, kGroupSize), cl::NDRange(kGroupSize));
+      std::swap(positions_, next_positions_);
+      run_normals();
+    }
+    set_kernel_args(evolve_kernel_, positions_, normals_, next_positions_, feasible_, faces_, vertex_face_offsets_,
+                    vertex_faces_, node_bounds_, node_children_, cell_offsets_, points_, params, vertex_count_);
     queue_.enqueueNDRangeKernel(evolve_kernel_, cl::NullRange, global_range(vertex_count_, kGroupSize), cl::NDRange(kGroupSize));
     std::swap(positions_, next_positions_);
     run_normals();

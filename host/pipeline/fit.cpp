@@ -44,7 +44,9 @@ double median_of(std::vector<double> values) {
 
 nlohmann::json parameters_json(const FitOptions& o, double epsilon, double median_radius) {
   const auto& e = o.evolution;
-  return {{"cones", e.cones},
+  return {{"mode", e.mode == EvolutionParameters::Mode::kPaper ? "paper" : "robust"},
+          {"relaxation", e.relaxation},
+          {"cones", e.cones},
           {"generators", e.generators},
           {"alpha_max", e.alpha_max},
           {"samples", e.samples},

@@ -14,6 +14,8 @@ typedef struct {
   float alpha_max;      /* radians */
   float epsilon;        /* feasibility bound |d| < epsilon */
   float reach;          /* rays look for cells up to this distance */
+  mcq_uint fold_guard;  /* 1: shorten steps that would fold a face (robust mode), 0: the paper's step */
+  float relaxation;     /* weight of the tangential relaxation before the step; 0: none (the paper) */
 } mcq_step_params;
 
 /* Orthonormal frame (i', j', k' = n) of the paper's cones. The helper axis is
@@ -126,6 +128,88 @@ MCQ_FN mcq_vec3 mcq_vertex_normal(const MCQ_GLOBAL float* positions, const MCQ_G
     sum = mcq_add(sum, mcq_scale(mcq_cross(mcq_sub(p2, p0), mcq_sub(p3, p1)), 0.5f));
   }
   return mcq_normalize(sum);
+}
+
+/* Vector area of face f with vertex `moved` placed at p. */
+MCQ_FN mcq_vec3 mcq_face_area_with(const MCQ_GLOBAL float* positions, const MCQ_GLOBAL mcq_uint* faces, mcq_uint f,
+                                   mcq_uint moved, mcq_vec3 p) {
+  mcq_vec3 c[4];
+  for (int k = 0; k < 4; ++k) {
+    mcq_uint v = faces[4 * f + k];
+    c[k] = v == moved ? p : mcq_load3(positions, v);
+  }
+  return mcq_cross(mcq_sub(c[2], c[0]), mcq_sub(c[3], c[1]));
+}
+
+/* Robust mode's guard: the largest of 1, 1/2, 1/4 of the step from q to
+ * `target` that turns no face around the vertex by more than 60 degrees
+ * (its neighbours where they were), else 0. At concave creases, vertices
+ * from both sides move along their normals into the crease; unguarded they
+ * fold their quads and cross each other there (the paper's own caveat). */
+MCQ_FN float mcq_fold_safe_fraction(const MCQ_GLOBAL float* positions, const MCQ_GLOBAL mcq_uint* faces,
+                                    const MCQ_GLOBAL mcq_uint* vertex_face_offsets,
+                                    const MCQ_GLOBAL mcq_uint* vertex_faces, mcq_uint vertex, mcq_vec3 q,
+                                    mcq_vec3 target) {
+  float fraction = 1.0f;
+  for (int attempt = 0; attempt < 3; ++attempt, fraction *= 0.5f) {
+    mcq_vec3 p = mcq_add(q, mcq_scale(mcq_sub(target, q), fraction));
+    int folds = 0;
+    for (mcq_uint k = vertex_face_offsets[vertex]; k < vertex_face_offsets[vertex + 1]; ++k) {
+      mcq_uint f = vertex_faces[k];
+      mcq_vec3 before = mcq_face_area_with(positions, faces, f, vertex, q);
+      mcq_vec3 after = mcq_face_area_with(positions, faces, f, vertex, p);
+      if (mcq_dot(before, after) <= 0.5f * mcq_length(before) * mcq_length(after)) folds = 1;
+    }
+    if (!folds) return fraction;
+  }
+  return 0.0f;
+}
+
+/* One vertex's new position: the paper's move along the normal, shortened
+ * by the fold guard when the step asks for it. */
+MCQ_FN mcq_vec3 mcq_evolve_vertex(const MCQ_GLOBAL float* positions, const MCQ_GLOBAL float* normals,
+                                  const MCQ_GLOBAL mcq_uint* faces, const MCQ_GLOBAL mcq_uint* vertex_face_offsets,
+                                  const MCQ_GLOBAL mcq_uint* vertex_faces, const MCQ_GLOBAL float* node_bounds,
+                                  const MCQ_GLOBAL int* node_children, const MCQ_GLOBAL mcq_uint* cell_offsets,
+                                  const MCQ_GLOBAL float* points, mcq_uint vertex, mcq_step_params params,
+                                  mcq_uint* feasible) {
+  mcq_vec3 q = mcq_load3(positions, vertex);
+  mcq_vec3 n = mcq_load3(normals, vertex);
+  float delta = mcq_vertex_displacement(node_bounds, node_children, cell_offsets, points, q, n, vertex, params, feasible);
+  mcq_vec3 target = mcq_add(q, mcq_scale(n, delta));
+  if (params.fold_guard && delta != 0.0f)
+    target = mcq_add(q, mcq_scale(n, delta * mcq_fold_safe_fraction(positions, faces, vertex_face_offsets, vertex_faces,
+                                                                       vertex, q, target)));
+  return target;
+}
+
+/* Robust mode's tangential relaxation: the vertex moves toward the mean of
+ * its edge neighbours, within its tangent plane (so toward evenly spread,
+ * well-shaped quads without leaving the surface). Vertices on an open
+ * boundary stay. Every edge neighbour of an inner vertex is counted twice
+ * (once per face on each side of the edge), so the mean is unweighted. */
+MCQ_FN mcq_vec3 mcq_relaxed_position(const MCQ_GLOBAL float* positions, const MCQ_GLOBAL float* normals,
+                                     const MCQ_GLOBAL mcq_uint* faces, const MCQ_GLOBAL mcq_uint* vertex_face_offsets,
+                                     const MCQ_GLOBAL mcq_uint* vertex_faces, const MCQ_GLOBAL mcq_uint* boundary,
+                                     mcq_uint vertex, float weight) {
+  mcq_vec3 q = mcq_load3(positions, vertex);
+  if (boundary[vertex]) return q;
+  mcq_vec3 sum = mcq_make_vec3(0.0f, 0.0f, 0.0f);
+  float count = 0.0f;
+  for (mcq_uint k = vertex_face_offsets[vertex]; k < vertex_face_offsets[vertex + 1]; ++k) {
+    mcq_uint f = vertex_faces[k];
+    for (mcq_uint c = 0; c < 4u; ++c) {
+      if (faces[4 * f + c] != vertex) continue;
+      sum = mcq_add(sum, mcq_load3(positions, faces[4 * f + (c + 1u) % 4u]));
+      sum = mcq_add(sum, mcq_load3(positions, faces[4 * f + (c + 3u) % 4u]));
+      count += 2.0f;
+    }
+  }
+  if (count == 0.0f) return q;
+  mcq_vec3 n = mcq_load3(normals, vertex);
+  mcq_vec3 pull = mcq_sub(mcq_scale(sum, 1.0f / count), q);
+  mcq_vec3 tangential = mcq_sub(pull, mcq_scale(n, mcq_dot(pull, n)));
+  return mcq_add(q, mcq_scale(tangential, weight));
 }
 
 /* The paper's e_i: distance from q to the least-squares plane of the cell
