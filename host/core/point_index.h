@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <memory>
 #include <nanoflann.hpp>
 #include <vector>
@@ -26,9 +27,9 @@ class PointIndex {
   //! Index of the nearest point and its squared distance (-1 for an empty index).
   std::pair<long, Scalar> nearest(const Point& query) const {
     if (adaptor_.points.empty()) return {-1, Scalar(0)};
-    size_t index = 0;
+    uint32_t index = 0;
     Scalar distance2 = 0;
-    nanoflann::KNNResultSet<Scalar, size_t> result(1);
+    nanoflann::KNNResultSet<Scalar, uint32_t> result(1);
     result.init(&index, &distance2);
     tree_.findNeighbors(result, query.data(), nanoflann::SearchParams());
     return {long(index), distance2};
@@ -37,17 +38,16 @@ class PointIndex {
   //! The k nearest points (indices), nearest first.
   std::vector<size_t> k_nearest(const Point& query, size_t k) const {
     k = std::min(k, adaptor_.points.size());
-    std::vector<size_t> indices(k);
+    std::vector<uint32_t> found_indices(k);
     std::vector<Scalar> distances(k);
-    if (k == 0) return indices;
-    size_t found = tree_.knnSearch(query.data(), k, indices.data(), distances.data());
-    indices.resize(found);
-    return indices;
+    if (k == 0) return {};
+    size_t found = tree_.knnSearch(query.data(), k, found_indices.data(), distances.data());
+    return std::vector<size_t>(found_indices.begin(), found_indices.begin() + found);
   }
 
   //! Indices of all points within `radius` of the query.
   std::vector<size_t> within(const Point& query, Scalar radius) const {
-    std::vector<std::pair<size_t, Scalar>> matches;
+    std::vector<std::pair<uint32_t, Scalar>> matches;
     tree_.radiusSearch(query.data(), radius * radius, matches, nanoflann::SearchParams());
     std::vector<size_t> indices;
     indices.reserve(matches.size());
@@ -63,8 +63,8 @@ class PointIndex {
     template <class Box>
     bool kdtree_get_bbox(Box&) const { return false; }
   };
-  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<Scalar, Adaptor>, Adaptor, 3, size_t>;
-  using IndexType = size_t;
+  // 32-bit indices: 4 bytes a point instead of 8 (clouds stay below 2^32 points).
+  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<Scalar, Adaptor>, Adaptor, 3, uint32_t>;
 
   Adaptor adaptor_;
   Tree tree_;

@@ -10,6 +10,11 @@
 #include <fstream>
 #include <random>
 
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include "core/errors.h"
 
 namespace mcquad {
@@ -27,6 +32,33 @@ std::string read_file(const std::string& path) {
   std::fclose(file);
   if (failed) throw InputError(path + ": read error");
   return bytes;
+}
+
+MappedFile::MappedFile(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory, not a file");
+  int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0) throw InputError(path + ": cannot open: " + std::strerror(errno));
+  struct stat info {};
+  if (::fstat(fd, &info) != 0) {
+    ::close(fd);
+    throw InputError(path + ": cannot read: " + std::strerror(errno));
+  }
+  size_ = size_t(info.st_size);
+  if (size_ > 0) {
+    data_ = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
+    if (data_ == MAP_FAILED) {
+      data_ = nullptr;
+      ::close(fd);
+      throw InputError(path + ": cannot read: " + std::strerror(errno));
+    }
+    ::madvise(data_, size_, MADV_SEQUENTIAL);
+  }
+  ::close(fd);
+}
+
+MappedFile::~MappedFile() {
+  if (data_) ::munmap(data_, size_);
 }
 
 std::string file_extension(const std::string& path) {

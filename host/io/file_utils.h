@@ -10,6 +10,22 @@ namespace mcquad {
 //! Whole file as bytes; InputError naming the file when it cannot be read.
 std::string read_file(const std::string& path);
 
+//! A file mapped read-only into memory: readers parse it in place, so a
+//! large cloud is never copied into a buffer first. InputError naming the
+//! file when it cannot be opened.
+class MappedFile {
+ public:
+  explicit MappedFile(const std::string& path);
+  ~MappedFile();
+  MappedFile(const MappedFile&) = delete;
+  MappedFile& operator=(const MappedFile&) = delete;
+  std::string_view view() const { return {static_cast<const char*>(data_), size_}; }
+
+ private:
+  void* data_ = nullptr;
+  size_t size_ = 0;
+};
+
 //! Lower-case extension without the dot ("ply"), or "" when there is none.
 std::string file_extension(const std::string& path);
 

@@ -63,19 +63,20 @@ bool scalar_type(const std::string& type, int& size, char& kind) {
   return false;
 }
 
-PlyHeader parse_header(const std::string& path, const std::string& bytes) {
+PlyHeader parse_header(const std::string& path, std::string_view bytes) {
   auto fail = [&](size_t line, const std::string& what) -> InputError {
     return InputError(path + ": PLY header line " + std::to_string(line) + ": " + what);
   };
   if (bytes.compare(0, 3, "ply") != 0) throw InputError(path + ": not a PLY file (no 'ply' magic)");
-  size_t end = bytes.find("end_header");
+  // A header is small: look for its end in the first megabyte only.
+  size_t end = bytes.substr(0, size_t(1) << 20).find("end_header");
   if (end == std::string::npos) throw InputError(path + ": truncated PLY header (no end_header)");
   size_t body = bytes.find('\n', end);
   if (body == std::string::npos) throw InputError(path + ": truncated PLY header (end_header not terminated)");
   PlyHeader header;
   header.body_offset = body + 1;
   bool have_format = false;
-  std::istringstream lines(bytes.substr(0, end));
+  std::istringstream lines(std::string(bytes.substr(0, end)));
   std::string line;
   size_t number = 0;
   while (std::getline(lines, line)) {
@@ -133,7 +134,7 @@ PlyHeader parse_header(const std::string& path, const std::string& bytes) {
 //! Reads scalars from a binary body with the file's byte order.
 class BinaryCursor {
  public:
-  BinaryCursor(const std::string& bytes, size_t offset, bool big_endian)
+  BinaryCursor(std::string_view bytes, size_t offset, bool big_endian)
       : bytes_(bytes), offset_(offset), swap_(big_endian) {}
 
   size_t remaining() const { return bytes_.size() - offset_; }
@@ -176,7 +177,7 @@ class BinaryCursor {
   }
 
  private:
-  const std::string& bytes_;
+  std::string_view bytes_;
   size_t offset_;
   bool swap_;
 };
@@ -185,7 +186,7 @@ struct VertexColumns {
   int x = -1, y = -1, z = -1, nx = -1, ny = -1, nz = -1;
 };
 
-VertexColumns find_columns(const std::string& path, const PlyElement& vertex) {
+VertexColumns find_columns(const std::string& path, const PlyElement& vertex, bool with_normals) {
   VertexColumns c;
   for (size_t i = 0; i < vertex.properties.size(); ++i) {
     const auto& p = vertex.properties[i];
@@ -194,6 +195,7 @@ VertexColumns find_columns(const std::string& path, const PlyElement& vertex) {
     if (slot && !p.is_list) *slot = static_cast<int>(i);
   }
   if (c.x < 0 || c.y < 0 || c.z < 0) throw InputError(path + ": PLY vertex element lacks x, y or z");
+  if (!with_normals) c.nx = c.ny = c.nz = -1;
   return c;
 }
 
@@ -233,7 +235,8 @@ void skip_binary_element(const std::string& path, const PlyElement& element, Bin
   }
 }
 
-PointCloud read_binary_vertices(const std::string& path, const std::string& bytes, const PlyHeader& header) {
+PointCloud read_binary_vertices(const std::string& path, std::string_view bytes, const PlyHeader& header,
+                                bool with_normals) {
   BinaryCursor cursor(bytes, header.body_offset, header.format == PlyFormat::kBinaryBig);
   PointCloud cloud;
   for (const auto& element : header.elements) {
@@ -242,7 +245,7 @@ PointCloud read_binary_vertices(const std::string& path, const std::string& byte
       continue;
     }
     if (element.has_lists()) throw InputError(path + ": PLY vertex element with list properties is not supported");
-    VertexColumns columns = find_columns(path, element);
+    VertexColumns columns = find_columns(path, element, with_normals);
     size_t stride = element.fixed_stride();
     if (element.count > cursor.remaining() / stride)
       throw InputError(path + ": truncated PLY: header claims " + std::to_string(element.count) +
@@ -260,9 +263,9 @@ PointCloud read_binary_vertices(const std::string& path, const std::string& byte
   throw InputError(path + ": PLY has no vertex element");
 }
 
-PointCloud read_ascii_vertices(const std::string& path, const std::string& bytes, const PlyHeader& header) {
-  std::string_view body(bytes);
-  body.remove_prefix(header.body_offset);
+PointCloud read_ascii_vertices(const std::string& path, std::string_view bytes, const PlyHeader& header,
+                               bool with_normals) {
+  std::string_view body = bytes.substr(header.body_offset);
   PointCloud cloud;
   size_t element_index = 0;
   unsigned long long entry = 0;
@@ -277,7 +280,7 @@ PointCloud read_ascii_vertices(const std::string& path, const std::string& bytes
     element = element_index < header.elements.size() ? &header.elements[element_index] : nullptr;
     entry = 0;
     if (element && element->name == "vertex") {
-      columns = find_columns(path, *element);
+      columns = find_columns(path, *element, with_normals);
       // Never trust the header's count for an allocation: cap by what the body can hold.
       cloud.points.reserve(std::min<unsigned long long>(element->count, body.size() / 6 + 1));
     }
@@ -317,11 +320,12 @@ PointCloud read_ascii_vertices(const std::string& path, const std::string& bytes
 
 }  // namespace
 
-PointCloud read_ply_cloud(const std::string& path) {
-  std::string bytes = read_file(path);
+PointCloud read_ply_cloud(const std::string& path, bool with_normals) {
+  MappedFile file(path);
+  std::string_view bytes = file.view();
   PlyHeader header = parse_header(path, bytes);
-  PointCloud cloud = header.format == PlyFormat::kAscii ? read_ascii_vertices(path, bytes, header)
-                                                        : read_binary_vertices(path, bytes, header);
+  PointCloud cloud = header.format == PlyFormat::kAscii ? read_ascii_vertices(path, bytes, header, with_normals)
+                                                        : read_binary_vertices(path, bytes, header, with_normals);
   if (cloud.normals.size() != cloud.points.size()) cloud.normals.clear();
   return cloud;
 }

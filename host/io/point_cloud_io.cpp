@@ -21,7 +21,8 @@ Eigen::Vector3f parse_point(const std::string& where, const std::vector<std::str
 }
 
 PointCloud read_xyz(const std::string& path) {
-  std::string text = read_file(path);
+  MappedFile file(path);
+  std::string_view text = file.view();
   PointCloud cloud;
   cloud.points.reserve(text.size() / 24 + 1);
   for_each_line(text, [&](size_t line_number, std::string_view line) {
@@ -48,7 +49,8 @@ PointCloud read_xyz(const std::string& path) {
 }
 
 PointCloud read_obj_vertices(const std::string& path) {
-  std::string text = read_file(path);
+  MappedFile file(path);
+  std::string_view text = file.view();
   PointCloud cloud;
   for_each_line(text, [&](size_t line_number, std::string_view line) {
     auto fields = split_fields(line);
@@ -61,7 +63,8 @@ PointCloud read_obj_vertices(const std::string& path) {
 }
 
 PointCloud read_off_vertices(const std::string& path) {
-  std::string text = read_file(path);
+  MappedFile file(path);
+  std::string_view text = file.view();
   PointCloud cloud;
   enum { kMagic, kCounts, kVertices, kDone } state = kMagic;
   long long vertex_count = 0;
@@ -100,16 +103,19 @@ PointCloud read_off_vertices(const std::string& path) {
 
 }  // namespace
 
-PointCloud read_point_cloud(const std::string& path) {
+PointCloud read_point_cloud(const std::string& path, bool with_normals) {
   std::string ext = file_extension(path);
   PointCloud cloud;
-  if (ext == "ply") cloud = read_ply_cloud(path);
+  if (ext == "ply") cloud = read_ply_cloud(path, with_normals);
   else if (ext == "xyz" || ext == "txt" || ext == "csv" || ext == "pts") cloud = read_xyz(path);
   else if (ext == "obj") cloud = read_obj_vertices(path);
   else if (ext == "off") cloud = read_off_vertices(path);
   else throw InputError(path + ": unknown point cloud extension '." + ext + "' (expected .ply, .xyz, .txt, .csv, .obj, .off)");
   if (cloud.empty()) throw InputError(path + ": the point cloud is empty");
-  if (cloud.normals.size() != cloud.points.size()) cloud.normals.clear();
+  if (cloud.normals.size() != cloud.points.size() || !with_normals) {
+    cloud.normals.clear();
+    cloud.normals.shrink_to_fit();
+  }
   return cloud;
 }
 

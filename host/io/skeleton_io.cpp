@@ -20,7 +20,8 @@ Eigen::Vector3d parse_xyz(const std::string& where, const std::vector<std::strin
 }
 
 SkeletonData read_obj_skeleton(const std::string& path) {
-  std::string text = read_file(path);
+  MappedFile file(path);
+  std::string_view text = file.view();
   SkeletonData skeleton;
   struct PendingLine {
     size_t line_number;
@@ -65,7 +66,8 @@ SkeletonData read_obj_skeleton(const std::string& path) {
 }
 
 SkeletonData read_polylines(const std::string& path) {
-  std::string text = read_file(path);
+  MappedFile file(path);
+  std::string_view text = file.view();
   SkeletonData skeleton;
   for_each_line(text, [&](size_t line_number, std::string_view line) {
     auto fields = split_fields(line);

@@ -73,6 +73,7 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
   PointIndex<float> cloud_index = timer.run("point_index", [&] { return PointIndex<float>(cloud.points); });
   BoneAssignment bones = timer.run("radius", [&] { return assign_points_to_bones(graph, cloud, skeleton_path, &cloud_index); });
   double median_radius = median_of(bones.bone_radius);
+  bones.release_per_point();  // only the radii are needed from here on
 
   InitialMesh initial = timer.run("initial_mesh", [&] { return build_initial_mesh(graph, bones, cloud, options.initial, skeleton_path, &cloud_index); });
   if (!options.construction_skeleton.empty()) {

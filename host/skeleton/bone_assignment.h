@@ -19,6 +19,13 @@ struct BoneAssignment {
   std::vector<double> bone_radius;  //!< median distance of the bone's points
   std::vector<double> node_radius;  //!< per skeleton node, see assign_points_to_bones
   std::vector<size_t> bone_point_count;
+
+  //! Frees the per-point arrays (12 bytes a point) once only radii are needed.
+  void release_per_point() {
+    std::vector<int>().swap(bone);
+    std::vector<float>().swap(parameter);
+    std::vector<float>().swap(distance);
+  }
 };
 
 //! Assigns points to bones and estimates radii. A bone's radius is the median
