@@ -18,6 +18,25 @@ PointCloud random_cloud(size_t n, unsigned seed) {
 
 device::mcq_vec3 vec(const Eigen::Vector3f& v) { return device::mcq_make_vec3(v.x(), v.y(), v.z()); }
 
+TEST(PointCloud, SpatialSortIsAPermutationThatBringsNeighboursTogether) {
+  PointCloud cloud = random_cloud(20000, 21);
+  PointCloud sorted = cloud;
+  sort_spatially(sorted);
+  auto key = [](const Eigen::Vector3f& p) { return std::make_tuple(p.x(), p.y(), p.z()); };
+  std::vector<std::tuple<float, float, float>> a, b;
+  for (const auto& p : cloud.points) a.push_back(key(p));
+  for (const auto& p : sorted.points) b.push_back(key(p));
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  EXPECT_EQ(a, b);
+  auto mean_step = [](const PointCloud& c) {
+    double sum = 0;
+    for (size_t i = 1; i < c.size(); ++i) sum += (c.points[i] - c.points[i - 1]).norm();
+    return sum / double(c.size() - 1);
+  };
+  EXPECT_LT(mean_step(sorted), 0.1 * mean_step(cloud));
+}
+
 TEST(CellTree, CellsPartitionTheCloudWithTightBoxes) {
   for (size_t n : {1u, 7u, 100u, 5000u}) {
     PointCloud cloud = random_cloud(n, 1);

@@ -137,6 +137,17 @@ std::unique_ptr<OpenCLBackend> opencl_or_skip() {
   return std::make_unique<OpenCLBackend>(select_device(""));
 }
 
+//! Vertices whose positions differ by more than `tolerance` in a coordinate.
+size_t count_differing(const std::vector<float>& a, const std::vector<float>& b, float tolerance) {
+  size_t differing = 0;
+  for (size_t v = 0; v < a.size() / 3; ++v) {
+    float d = 0;
+    for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(a[3 * v + k] - b[3 * v + k]));
+    differing += d > tolerance;
+  }
+  return differing;
+}
+
 #define REQUIRE_OPENCL(backend)                                  \
   auto backend = opencl_or_skip();                               \
   if (!backend) {                                                \
@@ -156,12 +167,7 @@ TEST(OpenCLParity, OneIterationMatchesTheSerialPath) {
   serial.step(params);
   opencl->step(params);
   std::vector<float> a = serial.positions(), b = opencl->positions();
-  size_t differing = 0;
-  for (size_t v = 0; v < a.size() / 3; ++v) {
-    float d = 0;
-    for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(a[3 * v + k] - b[3 * v + k]));
-    differing += d > 1e-4f * float(f.radius);
-  }
+  size_t differing = count_differing(a, b, 1e-4f * float(f.radius));
   // Ties in the first cell a ray enters may resolve differently under float
   // rounding; they must stay a tiny fraction (docs/DESIGN.md).
   EXPECT_LE(differing, a.size() / 3 / 50) << differing << " of " << a.size() / 3 << " vertices differ";
@@ -182,12 +188,7 @@ TEST(OpenCLParity, RelaxationAndPaperModeMatchTheSerialPath) {
       serial.step(make_step_params(p, 0));
       opencl->step(make_step_params(p, 0));
       std::vector<float> a = serial.positions(), b = opencl->positions();
-      size_t differing = 0;
-      for (size_t v = 0; v < a.size() / 3; ++v) {
-        float d = 0;
-        for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(a[3 * v + k] - b[3 * v + k]));
-        differing += d > 1e-4f * float(f.radius);
-      }
+      size_t differing = count_differing(a, b, 1e-4f * float(f.radius));
       EXPECT_LE(differing, a.size() / 3 / 50) << "relaxation " << relaxation;
     }
   }

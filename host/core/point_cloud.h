@@ -17,6 +17,12 @@ struct PointCloud {
   const float* data() const { return reinterpret_cast<const float*>(points.data()); }
 };
 
+//! Reorders the points along a Morton (Z-order) curve, so that points near in
+//! space are near in memory: every kd-tree built and searched afterwards
+//! touches far fewer cache lines. Scans come in arbitrary order, and no
+//! stage needs the original one.
+void sort_spatially(PointCloud& cloud);
+
 //! Axis-aligned bounding box of a cloud (min, max); zero box for an empty one.
 std::pair<Eigen::Vector3f, Eigen::Vector3f> bounding_box(const PointCloud& cloud);
 

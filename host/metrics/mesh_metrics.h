@@ -31,7 +31,8 @@ std::vector<int> irregular_vertices(const QuadMesh& mesh);
 //! Everything `mcquad metrics` and fit's report state about a mesh.
 struct QualityMetrics {
   MeshStatistics statistics;
-  DistanceSummary mesh_to_cloud, cloud_to_mesh;
+  DistanceSummary mesh_to_cloud;
+  DistanceSummary cloud_to_mesh;   //!< over at most a million evenly strided cloud points
   double error_level = 0;          //!< the paper's e-bar
   long inward_faces = -1;          //!< faces whose normal points into the tube (-1: no skeleton)
   size_t folded_edges = 0;         //!< edges between faces folded over each other

@@ -33,7 +33,7 @@ std::vector<double> mesh_to_cloud_distances(const QuadMesh& mesh, const PointClo
   return out;
 }
 
-std::vector<double> cloud_to_mesh_distances(const QuadMesh& mesh, const PointCloud& cloud) {
+std::vector<double> cloud_to_mesh_distances(const QuadMesh& mesh, const PointCloud& cloud, size_t max_points) {
   std::vector<std::array<Eigen::Vector3d, 3>> triangles;
   std::vector<Eigen::Vector3d> centroids;
   for (auto f : mesh.faces()) {
@@ -48,10 +48,11 @@ std::vector<double> cloud_to_mesh_distances(const QuadMesh& mesh, const PointClo
     }
   }
   PointIndex<double> index(centroids);
-  std::vector<double> out(cloud.size());
+  size_t stride = max_points > 0 ? std::max<size_t>(1, (cloud.size() + max_points - 1) / max_points) : 1;
+  std::vector<double> out((cloud.size() + stride - 1) / stride);
 #pragma omp parallel for schedule(static)
-  for (long i = 0; i < long(cloud.size()); ++i) {
-    Eigen::Vector3d p = cloud.points[i].cast<double>();
+  for (long i = 0; i < long(out.size()); ++i) {
+    Eigen::Vector3d p = cloud.points[size_t(i) * stride].cast<double>();
     double best = INFINITY;
     for (size_t t : index.k_nearest(p, 8))
       best = std::min(best, point_triangle_distance(p, triangles[t][0], triangles[t][1], triangles[t][2]));

@@ -19,7 +19,8 @@ std::vector<double> mesh_to_cloud_distances(const QuadMesh& mesh, const PointClo
 
 //! Distance of every cloud point to the mesh surface (quads split into two
 //! triangles; the exact point-triangle distance over the triangles whose
-//! centroids are nearest).
-std::vector<double> cloud_to_mesh_distances(const QuadMesh& mesh, const PointCloud& cloud);
+//! centroids are nearest). With `max_points` > 0, every k-th point only, so
+//! that at most that many are measured (huge clouds).
+std::vector<double> cloud_to_mesh_distances(const QuadMesh& mesh, const PointCloud& cloud, size_t max_points = 0);
 
 }  // namespace mcquad

@@ -68,6 +68,7 @@ nlohmann::json parameters_json(const FitOptions& o, double epsilon, double media
 FitResult run_fit(const std::string& points_path, const std::string& skeleton_path, const FitOptions& options) {
   StageTimer timer;
   PointCloud cloud = timer.run("read_points", [&] { return read_point_cloud(points_path); });
+  timer.run("sort_points", [&] { sort_spatially(cloud); return 0; });
   SkeletonData skeleton_data = timer.run("read_skeleton", [&] { return read_skeleton(skeleton_path); });
   SkeletonGraph graph = build_skeleton_graph(skeleton_data, skeleton_path);
   PointIndex<float> cloud_index = timer.run("point_index", [&] { return PointIndex<float>(cloud.points); });
