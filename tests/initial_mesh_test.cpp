@@ -89,6 +89,7 @@ INSTANTIATE_TEST_SUITE_P(Shapes, InitialMeshProperties,
                                          ShapeCase{"bent-tube", {}, 12000}, ShapeCase{"torus", {}, 15000},
                                          ShapeCase{"torus-knot", {}, 60000}, ShapeCase{"tube-frame", {}, 60000},
                                          ShapeCase{"theta", {}, 20000}, ShapeCase{"y-fork", with_angle(60), 20000},
+                                         ShapeCase{"y-fork", with_angle(30), 20000},
                                          ShapeCase{"star", with_arms(3), 20000}, ShapeCase{"star", with_arms(4), 20000},
                                          ShapeCase{"star", with_arms(5), 20000}, ShapeCase{"star", with_arms(6), 20000}),
                          case_name);

@@ -129,7 +129,9 @@ class MeshAssembler {
       Eigen::Vector3d p(q[0], q[1], q[2]);
       Eigen::Vector3d w = cloud_.points[cloud_index_.nearest(p.cast<float>()).first].cast<double>() - p;
       double ahead = w.dot(n);
-      double shift = ahead < margin ? margin - ahead : 0.0;
+      // Capped: in a thin part the nearest point can lie behind a vertex
+      // that is inside (on the far wall); a long shift would cross it.
+      double shift = ahead < margin ? std::min(margin - ahead, 2.0 * margin) : 0.0;
       if (shift > 0) mesh.set_point(v, QuadMesh::Point(p.x() - shift * n.x(), p.y() - shift * n.y(), p.z() - shift * n.z()));
     }
   }
@@ -472,6 +474,7 @@ InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment&
     refine_catmull_clark(result.mesh, result.refinement_levels);
     relax_folds(result.mesh);
     assembler.keep_inside_cloud(result.mesh);
+    relax_folds(result.mesh);  // moving back inside can fold a face in a tight crease
     result.irregular_allowed.resize(result.mesh.n_vertices(), false);
   }
   return result;
