@@ -94,6 +94,29 @@ INSTANTIATE_TEST_SUITE_P(Shapes, InitialMeshProperties,
                                          ShapeCase{"star", with_arms(5), 20000}, ShapeCase{"star", with_arms(6), 20000}),
                          case_name);
 
+//! Two separate objects in one cloud and one skeleton: a torus and, beside
+//! it, a T. One mesh component each, with each its own Euler characteristic.
+TEST(InitialMesh, SeparateObjectsBecomeSeparateComponents) {
+  GeneratedShape torus = test::small_shape("torus", 15000);
+  GeneratedShape t = test::small_shape("t-shape", 15000);
+  Eigen::Vector3d shift(20, 0, 0);
+  PointCloud cloud = torus.cloud;
+  for (const auto& p : t.cloud.points) cloud.points.push_back(p + shift.cast<float>());
+  SkeletonData skeleton = torus.skeleton;
+  int offset = int(skeleton.nodes.size());
+  for (const auto& p : t.skeleton.nodes) skeleton.nodes.push_back(p + shift);
+  for (const auto& e : t.skeleton.edges) skeleton.edges.push_back({e[0] + offset, e[1] + offset});
+  SkeletonGraph graph = build_skeleton_graph(skeleton, "two");
+  ASSERT_EQ(graph.component_count, 2);
+  BoneAssignment bones = assign_points_to_bones(graph, cloud, "two");
+  InitialMesh initial = build_initial_mesh(graph, bones, cloud, {}, "two");
+  MeshStatistics s = mesh_statistics(initial.mesh);
+  EXPECT_EQ(s.components, 2u);
+  EXPECT_EQ(s.euler_characteristic, 0 + (2 - 1));  // torus 0; T with one open end 1
+  EXPECT_EQ(s.boundary_loops, 1u);
+  EXPECT_EQ(intersecting_face_pairs(initial.mesh).size(), 0u);
+}
+
 TEST(InitialMesh, SevenArmsFailClearlyNamingTheNode) {
   SkeletonData skeleton;
   skeleton.nodes.push_back(Eigen::Vector3d::Zero());
