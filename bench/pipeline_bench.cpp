@@ -18,6 +18,7 @@
 #include "mesh/mesh_arrays.h"
 #include "mesh/refinement.h"
 #include "metrics/mesh_metrics.h"
+#include "pipeline/fit.h"
 #include "skeleton/bone_assignment.h"
 #ifdef MCQUAD_WITH_OPENCL
 #include "opencl/opencl_backend.h"
@@ -69,7 +70,7 @@ Prepared& prepared(size_t points, size_t vertices) {
   InitialMeshOptions options;
   options.target_vertices = vertices;
   p->initial = build_initial_mesh(p->graph, p->bones, p->cloud, options, "knot");
-  p->cells = build_cell_tree(p->cloud, 8);
+  p->cells = build_cell_tree(p->cloud, FitOptions().leaf_size);
   p->arrays = flatten_mesh(p->initial.mesh);
   p->parameters.epsilon = 0.8;  // the paper's Fig. 7 value
   slot = std::move(p);
@@ -96,7 +97,7 @@ void BM_ReadPly(benchmark::State& state) {
 
 void BM_CellTree(benchmark::State& state) {
   const PointCloud& cloud = prepared(size_t(state.range(0)), 0).cloud;
-  for (auto _ : state) benchmark::DoNotOptimize(build_cell_tree(cloud, 8));
+  for (auto _ : state) benchmark::DoNotOptimize(build_cell_tree(cloud, FitOptions().leaf_size));
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(cloud.size()));
 }
 
