@@ -94,7 +94,8 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
   report["parameters"] = parameters_json(options, parameters.epsilon, median_radius);
   report["initial_mesh"] = {{"open_ends", initial.open_ends}, {"refinement_levels", initial.refinement_levels},
                             {"statistics", to_json(mesh_statistics(result.mesh))}};
-  report["cells"] = {{"cells", cells.cell_count()}, {"tree_nodes", cells.node_count()}, {"depth", cells.depth}};
+  report["cells"] = {{"cells", cells.cell_count()}, {"tree_nodes", cells.node_count()}, {"depth", cells.depth},
+                     {"megabytes", double(cells.byte_size()) / 1e6}};
 
   if (options.evolve) {
     if (options.initial.stage != "refined") throw InputError("--stage applies to 'mcquad init' only");

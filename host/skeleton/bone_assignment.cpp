@@ -94,9 +94,7 @@ BoneAssignment assign_points_to_bones(const SkeletonGraph& graph, const PointClo
     if (result.parameter[i] > 0.0f && result.parameter[i] < 1.0f) interior[result.bone[i]].push_back(result.distance[i]);
   }
   result.bone_radius.resize(bone_count);
-  result.bone_point_count.resize(bone_count);
   for (size_t b = 0; b < bone_count; ++b) {
-    result.bone_point_count[b] = all[b].size();
     if (all[b].empty()) {
       std::ostringstream s;
       s << source << ": bone between nodes at (" << graph.positions[graph.edges[b][0]].transpose() << ") and ("

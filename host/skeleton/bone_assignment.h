@@ -18,7 +18,6 @@ struct BoneAssignment {
   std::vector<float> distance;   //!< per point: distance to the bone
   std::vector<double> bone_radius;  //!< median distance of the bone's points
   std::vector<double> node_radius;  //!< per skeleton node, see assign_points_to_bones
-  std::vector<size_t> bone_point_count;
 
   //! Frees the per-point arrays (12 bytes a point) once only radii are needed.
   void release_per_point() {
