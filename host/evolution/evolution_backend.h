@@ -23,7 +23,9 @@ class EvolutionBackend {
   virtual std::string device_name() const = 0;
 
   //! Takes the cells and the mesh (uploading them where that applies) and
-  //! computes the initial normals.
+  //! computes the initial normals. `cells` and `mesh` must outlive the
+  //! backend: the serial one reads them, and the OpenCL one uses them in place
+  //! on a CPU device.
   virtual void load(const CellTree& cells, const MeshArrays& mesh) = 0;
   //! One Jacobi step of every vertex, then the normals of the new positions.
   virtual void step(const device::mcq_step_params& params) = 0;

@@ -34,6 +34,12 @@ void OpenCLBackend::fail(const char* operation, const cl::Error& error) const {
 
 template <typename T>
 cl::Buffer OpenCLBackend::upload(const std::vector<T>& data, cl_mem_flags flags) {
+  // A CPU device reads host memory anyway: read-only arrays are used in
+  // place (the cells and mesh outlive the backend, as for the serial one)
+  // instead of being copied, which saves a copy of the cloud.
+  if (device_.type == "CPU" && flags == CL_MEM_READ_ONLY && !data.empty())
+    return cl::Buffer(context_, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, data.size() * sizeof(T),
+                      const_cast<T*>(data.data()));
   // Zero-sized buffers are invalid in OpenCL; an empty array gets one element.
   size_t bytes = std::max<size_t>(data.size(), 1) * sizeof(T);
   cl::Buffer buffer(context_, flags, bytes);
