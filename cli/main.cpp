@@ -201,6 +201,12 @@ int main(int argc, char** argv) {
   generate_app->add_option("--angle", shape_options.angle_degrees, "y-fork: angle between the branches, degrees")
       ->check(CLI::Range(5.0, 175.0))->capture_default_str();
   generate_app->add_option("--arms", shape_options.arms, "star: junction valence (3..6)")->check(CLI::Range(3, 6))->capture_default_str();
+  generate_app->add_option("--outliers", shape_options.outliers, "fraction of points replaced by outliers off the surface")
+      ->check(CLI::Range(0.0, 0.5))->capture_default_str();
+  generate_app->add_option("--density-ratio", shape_options.density_ratio, "density falls along x by this factor")
+      ->check(CLI::Range(1.0, 1000.0))->capture_default_str();
+  generate_app->add_option("--holes", shape_options.holes, "patches of radius r left without points")
+      ->check(CLI::Range(0, 100))->capture_default_str();
 
   app.add_subcommand("devices", "list the OpenCL platforms and devices");
 

@@ -4,6 +4,7 @@
 #include "helpers.h"
 #include "io/point_cloud_io.h"
 #include "io/skeleton_io.h"
+#include "core/point_index.h"
 
 namespace mcquad {
 namespace {
@@ -62,6 +63,43 @@ TEST(Generate, WritesCloudSkeletonAndSurfaceThatReadBack) {
   double spread = 0;
   for (const auto& p : rough.cloud.points) spread += std::pow(rough.surface.signed_distance(p.cast<double>()), 2);
   EXPECT_NEAR(std::sqrt(spread / 5000), 0.05, 0.005) << "noise is a fraction of the radius (1 here)";
+}
+
+TEST(Generate, ScanDefectsOutliersDensityAndHoles) {
+  ShapeOptions options;
+  options.outliers = 0.01;
+  GeneratedShape noisy = test::small_shape("t-shape", 20000, options);
+  size_t off_surface = 0;
+  for (const auto& p : noisy.cloud.points) off_surface += std::abs(noisy.surface.signed_distance(p.cast<double>())) >= 0.99;
+  EXPECT_EQ(off_surface, 200u);
+
+  // Density: the T's arms run along x, from -5 to 5.
+  auto end_ratio = [](const PointCloud& cloud) {
+    double left = 0, right = 0;
+    for (const auto& p : cloud.points) {
+      left += p.x() < -4.0f;
+      right += p.x() > 4.0f;
+    }
+    return left / std::max(right, 1.0);
+  };
+  ShapeOptions uneven;
+  uneven.density_ratio = 10;
+  EXPECT_GT(end_ratio(test::small_shape("t-shape", 20000, uneven).cloud), 4.0);
+  EXPECT_NEAR(end_ratio(test::small_shape("t-shape", 20000).cloud), 1.0, 0.15);
+
+  // Holes: some place on the true surface is a radius from every point.
+  auto largest_gap = [](const GeneratedShape& shape) {
+    PointIndex<float> index(shape.cloud.points);
+    std::mt19937_64 random(99);
+    PointCloud probe = shape.surface.sample(4000, random, 0.0);
+    double gap = 0;
+    for (const auto& p : probe.points) gap = std::max(gap, std::sqrt(double(index.nearest(p).second)));
+    return gap;
+  };
+  ShapeOptions holed;
+  holed.holes = 3;
+  EXPECT_GT(largest_gap(test::small_shape("torus", 20000, holed)), 0.8);
+  EXPECT_LT(largest_gap(test::small_shape("torus", 20000)), 0.3);
 }
 
 }  // namespace

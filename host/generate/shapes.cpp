@@ -114,6 +114,35 @@ void theta(ShapeBuilder& b) {
   }
 }
 
+void parallel_tubes(ShapeBuilder& b) {
+  // Two capped tubes of radius 1 whose surfaces pass half a radius apart.
+  b.tube(b.line(b.node(Vec(-1.25, 0, -4)), Vec(-1.25, 0, 4), 1.0), 1.0);
+  b.tube(b.line(b.node(Vec(1.25, 0, -4)), Vec(1.25, 0, 4), 1.0), 1.0);
+}
+
+void thin_branch(ShapeBuilder& b) {
+  // A trunk of radius 1 with a branch of radius 0.2 leaving it at 60 degrees.
+  int junction = b.node(Vec(0, 0, 0));
+  b.tube(b.line(junction, Vec(0, -5, 0), 1.0), 1.0);
+  b.tube(b.line(junction, Vec(0, 5, 0), 1.0), 1.0);
+  b.tube(b.line(junction, 5.0 * Vec(std::sin(M_PI / 3), std::cos(M_PI / 3), 0), 0.5), 0.2);
+}
+
+void tight_knot(ShapeBuilder& b) {
+  // A (2,3) torus knot whose tube (radius 1) passes within one radius of
+  // itself where the strands cross.
+  const double R = 4.0, a = 1.8;
+  const int nodes = 180;
+  std::vector<int> ids;
+  for (int k = 0; k < nodes; ++k) {
+    double t = 2 * M_PI * k / nodes;
+    ids.push_back(b.node(Vec((R + a * std::cos(3 * t)) * std::cos(2 * t), (R + a * std::cos(3 * t)) * std::sin(2 * t),
+                             a * std::sin(3 * t))));
+  }
+  ids.push_back(ids.front());
+  b.tube(ids, 1.0);
+}
+
 void torus_knot(ShapeBuilder& b) {
   // (2,3) torus knot; R, a and the tube radius solved so the bounding box is
   // the paper's Fig. 7 box [-24.88,4.43]x[-17.25,10.91]x[-1.71,7.41] (the
@@ -162,6 +191,66 @@ void tube_frame(ShapeBuilder& b) {
     for (int j = 0; j < 2; ++j) edge(corner[i][j][0], corner[i][j][1]);
 }
 
+//! Adds `count` points uniform in the cloud's box grown by a fifth, each at
+//! least a tube radius away from the surface (their normals are zero).
+void add_outliers(PointCloud& cloud, const TubeSurface& surface, size_t count, std::mt19937_64& random) {
+  if (count == 0) return;
+  auto [lo, hi] = bounding_box(cloud);
+  Eigen::Vector3f margin = 0.2f * (hi - lo);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  size_t added = 0;
+  while (added < count) {
+    Eigen::Vector3f p = lo - margin + Eigen::Vector3f(u(random), u(random), u(random)).cwiseProduct(hi - lo + 2 * margin);
+    double d = surface.signed_distance(p.cast<double>());
+    if (std::abs(d) < surface.capsules()[surface.nearest_capsule(p.cast<double>())].radius) continue;
+    cloud.points.push_back(p);
+    cloud.normals.push_back(Eigen::Vector3f::Zero());
+    ++added;
+  }
+}
+
+//! Samples the surface, then makes it look like a real scan: density falling
+//! along x, holes, outliers. Points are drawn in batches and thinned until
+//! there are `count`.
+PointCloud sample_with_defects(const TubeSurface& surface, size_t count, const ShapeOptions& options,
+                               std::mt19937_64& random) {
+  if (options.outliers < 0 || options.outliers >= 1) throw InputError("--outliers must be in [0, 1)");
+  if (options.density_ratio < 1 || !std::isfinite(options.density_ratio)) throw InputError("--density-ratio must be at least 1");
+  if (options.holes < 0) throw InputError("--holes must not be negative");
+  size_t outliers = size_t(std::lround(options.outliers * double(count)));
+  size_t on_surface = count - outliers;
+  if (options.density_ratio == 1 && options.holes == 0) {
+    PointCloud cloud = surface.sample(on_surface, random, options.noise);
+    add_outliers(cloud, surface, outliers, random);
+    return cloud;
+  }
+  // Hole centres: points of a first sample; density along x of that sample's box.
+  PointCloud probe = surface.sample(std::max<size_t>(64, size_t(options.holes)), random, 0.0);
+  auto [lo, hi] = bounding_box(probe);
+  std::vector<Eigen::Vector3f> centres(probe.points.begin(), probe.points.begin() + options.holes);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  PointCloud cloud;
+  while (cloud.size() < on_surface) {
+    PointCloud batch = surface.sample(std::max<size_t>(1024, (on_surface - cloud.size()) * 2), random, options.noise);
+    for (size_t i = 0; i < batch.size() && cloud.size() < on_surface; ++i) {
+      const Eigen::Vector3f& p = batch.points[i];
+      double along = std::clamp(double((p.x() - lo.x()) / std::max(hi.x() - lo.x(), 1e-12f)), 0.0, 1.0);
+      double keep = 1.0 - (1.0 - 1.0 / options.density_ratio) * along;
+      if (uniform(random) > keep) continue;
+      bool in_hole = false;
+      for (const auto& c : centres) {
+        double r = surface.capsules()[surface.nearest_capsule(c.cast<double>())].radius;
+        in_hole = in_hole || (p - c).norm() < r;
+      }
+      if (in_hole) continue;
+      cloud.points.push_back(p);
+      cloud.normals.push_back(batch.normals[i]);
+    }
+  }
+  add_outliers(cloud, surface, outliers, random);
+  return cloud;
+}
+
 size_t default_points(const std::string& name) {
   if (name == "torus-knot") return 413696;
   if (name == "tube-frame") return 182274;
@@ -181,7 +270,10 @@ std::vector<std::pair<std::string, std::string>> shape_catalogue() {
           {"torus", "a torus (a pure loop)"},
           {"y-fork", "a Y: trunk and two thinner branches at --angle degrees"},
           {"star", "one junction of valence --arms (3..6) at skew angles"},
-          {"theta", "two junctions joined by three chains"}};
+          {"theta", "two junctions joined by three chains"},
+          {"parallel-tubes", "two capped tubes whose surfaces pass half a radius apart"},
+          {"thin-branch", "a trunk with a branch a fifth of its radius"},
+          {"tight-knot", "a knot whose tube passes within one radius of itself"}};
 }
 
 GeneratedShape generate_shape(const std::string& name, const ShapeOptions& options) {
@@ -195,12 +287,15 @@ GeneratedShape generate_shape(const std::string& name, const ShapeOptions& optio
   else if (name == "y-fork") y_fork(b, options.angle_degrees);
   else if (name == "star") star(b, options.arms);
   else if (name == "theta") theta(b);
+  else if (name == "parallel-tubes") parallel_tubes(b);
+  else if (name == "thin-branch") thin_branch(b);
+  else if (name == "tight-knot") tight_knot(b);
   else throw InputError("unknown shape '" + name + "' (see 'mcquad generate --help')");
   if (options.noise < 0 || !std::isfinite(options.noise)) throw InputError("--noise must be a non-negative number");
   GeneratedShape shape = std::move(b.shape);
   shape.name = name;
   std::mt19937_64 random(options.seed);
-  shape.cloud = shape.surface.sample(options.points ? options.points : default_points(name), random, options.noise);
+  shape.cloud = sample_with_defects(shape.surface, options.points ? options.points : default_points(name), options, random);
   size_t vertices = shape.skeleton.nodes.size();
   shape.independent_cycles = int(shape.skeleton.edges.size()) - int(vertices) + 1;
   return shape;

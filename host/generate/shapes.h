@@ -15,6 +15,10 @@ struct ShapeOptions {
   uint64_t seed = 1;
   double angle_degrees = 60;  //!< y-fork: angle between the two branches
   int arms = 4;               //!< star: valence of the junction (3..6), arms at skew angles
+  // Scan defects (issue 6's cases):
+  double outliers = 0;        //!< fraction of the points replaced by outliers at least a radius off the surface
+  double density_ratio = 1;   //!< density falls linearly along x from 1 to 1/ratio (10 = tenfold)
+  int holes = 0;              //!< patches of radius r left without points
 };
 
 //! A synthetic cloud with its skeleton and its true surface.
@@ -34,7 +38,10 @@ std::vector<std::pair<std::string, std::string>> shape_catalogue();
 //! 413,696 points in the paper's box), tube-frame (Fig. 6 stand-in: 182,274
 //! points in the paper's box), tube, bent-tube (open both ends), torus,
 //! y-fork, star (one junction, valence 3..6, skew), theta (two junctions,
-//! three chains). InputError for an unknown name.
+//! three chains), and for issue 6's hard cases: parallel-tubes (two tubes
+//! half a radius apart), thin-branch (a branch a fifth of the trunk's radius),
+//! tight-knot (a knot passing within a radius of itself). InputError for an
+//! unknown name or a bad option.
 GeneratedShape generate_shape(const std::string& name, const ShapeOptions& options);
 
 //! Writes DIR/NAME.ply, DIR/NAME.skeleton.obj and DIR/NAME.surface.json.
