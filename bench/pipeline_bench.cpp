@@ -19,6 +19,7 @@
 #include "mesh/refinement.h"
 #include "metrics/mesh_metrics.h"
 #include "pipeline/fit.h"
+#include "pipeline/prepare.h"
 #include "skeleton/bone_assignment.h"
 #ifdef MCQUAD_WITH_OPENCL
 #include "opencl/opencl_backend.h"
@@ -50,10 +51,7 @@ std::string knot_cloud(size_t points) {
 struct Prepared {
   PointCloud cloud;
   SkeletonGraph graph;
-  BoneAssignment bones;
-  InitialMesh initial;
-  CellTree cells;
-  MeshArrays arrays;
+  EvolutionSetup setup;
   EvolutionParameters parameters;
 };
 
@@ -66,12 +64,9 @@ Prepared& prepared(size_t points, size_t vertices) {
   p->cloud = read_point_cloud(dir + "/torus-knot.ply");
   sort_spatially(p->cloud);  // as the pipeline does
   p->graph = build_skeleton_graph(read_skeleton(dir + "/torus-knot.skeleton.obj"), "knot");
-  p->bones = assign_points_to_bones(p->graph, p->cloud, "knot");
   InitialMeshOptions options;
   options.target_vertices = vertices;
-  p->initial = build_initial_mesh(p->graph, p->bones, p->cloud, options, "knot");
-  p->cells = build_cell_tree(p->cloud, FitOptions().leaf_size);
-  p->arrays = flatten_mesh(p->initial.mesh);
+  p->setup = prepare_evolution(p->graph, p->cloud, options, FitOptions().leaf_size, "knot");
   p->parameters.epsilon = 0.8;  // the paper's Fig. 7 value
   slot = std::move(p);
   return *slot;
@@ -111,14 +106,14 @@ void BM_InitialMesh(benchmark::State& state) {
   Prepared& p = prepared(kPaperPoints, 0);
   InitialMeshOptions options;
   options.target_vertices = size_t(state.range(0));
-  for (auto _ : state) benchmark::DoNotOptimize(build_initial_mesh(p.graph, p.bones, p.cloud, options, "knot"));
+  for (auto _ : state) benchmark::DoNotOptimize(build_initial_mesh(p.graph, p.setup.bones, p.cloud, options, "knot"));
 }
 
 void BM_Refinement(benchmark::State& state) {
   Prepared& p = prepared(kPaperPoints, 0);
   InitialMeshOptions options;
   options.stage = "extruded";
-  QuadMesh rough = build_initial_mesh(p.graph, p.bones, p.cloud, options, "knot").mesh;
+  QuadMesh rough = build_initial_mesh(p.graph, p.setup.bones, p.cloud, options, "knot").mesh;
   for (auto _ : state) {
     QuadMesh mesh = rough;
     refine_catmull_clark(mesh, int(state.range(0)));
@@ -141,36 +136,36 @@ void BM_Step(benchmark::State& state) {
   Prepared& p = prepared(size_t(state.range(1)), size_t(state.range(2)));
   auto backend = backend_for(int(state.range(0)));
   if (!backend) return state.SkipWithError("no OpenCL in this build");
-  backend->load(p.cells, p.arrays);
+  backend->load(p.setup.cells, p.setup.arrays);
   unsigned iteration = 0;
   for (auto _ : state) {
     backend->step(make_step_params(p.parameters, iteration++));
     backend->finish();
   }
-  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(p.arrays.vertex_count()) *
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(p.setup.arrays.vertex_count()) *
                           (p.parameters.cones * p.parameters.generators + 1));
-  state.SetLabel(backend->name() + ", " + std::to_string(p.arrays.vertex_count()) + " vertices");
+  state.SetLabel(backend->name() + ", " + std::to_string(p.setup.arrays.vertex_count()) + " vertices");
 }
 
 void BM_ErrorLevel(benchmark::State& state) {
   Prepared& p = prepared(size_t(state.range(1)), size_t(state.range(2)));
   auto backend = backend_for(int(state.range(0)));
   if (!backend) return state.SkipWithError("no OpenCL in this build");
-  backend->load(p.cells, p.arrays);
+  backend->load(p.setup.cells, p.setup.arrays);
   for (auto _ : state) benchmark::DoNotOptimize(backend->error_level());
-  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(p.arrays.vertex_count()));
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(p.setup.arrays.vertex_count()));
   state.SetLabel(backend->name());
 }
 
 void BM_Metrics(benchmark::State& state) {
   Prepared& p = prepared(kPaperPoints, 0);
-  for (auto _ : state) benchmark::DoNotOptimize(measure_quality(p.initial.mesh, p.cloud, p.cells, &p.graph));
+  for (auto _ : state) benchmark::DoNotOptimize(measure_quality(p.setup.initial.mesh, p.cloud, p.setup.cells, &p.graph));
 }
 
 void BM_WriteMesh(benchmark::State& state) {
   Prepared& p = prepared(kPaperPoints, 0);
   std::string path = bench_dir() + "/written.ply";
-  for (auto _ : state) write_mesh(path, p.initial.mesh);
+  for (auto _ : state) write_mesh(path, p.setup.initial.mesh);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "metrics/mesh_metrics.h"
 #include "metrics/surface_distance.h"
 #include "pipeline/fit.h"
+#include "pipeline/prepare.h"
 #include "skeleton/bone_assignment.h"
 #ifdef MCQUAD_WITH_OPENCL
 #include "opencl/opencl_backend.h"
@@ -22,24 +23,18 @@ namespace {
 struct Fixture {
   GeneratedShape shape;
   SkeletonGraph graph;
-  BoneAssignment bones;
-  InitialMesh initial;
-  CellTree cells;
-  MeshArrays arrays;
+  EvolutionSetup setup;
+  const InitialMesh& initial = setup.initial;
+  const CellTree& cells = setup.cells;
+  const MeshArrays& arrays = setup.arrays;
   EvolutionParameters parameters;
-  double radius = 1;
+  double radius = setup.median_radius;
 
   explicit Fixture(const std::string& name, size_t points)
       : shape(test::small_shape(name, points)),
         graph(build_skeleton_graph(shape.skeleton, name)),
-        bones(assign_points_to_bones(graph, shape.cloud, name)),
-        initial(build_initial_mesh(graph, bones, shape.cloud, {}, name)),
-        cells(build_cell_tree(shape.cloud, FitOptions().leaf_size)),
-        arrays(flatten_mesh(initial.mesh)) {
-    std::vector<double> radii = bones.bone_radius;
-    std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
-    radius = radii[radii.size() / 2];
-    parameters.epsilon = 0.6 * radius;
+        setup(prepare_evolution(graph, shape.cloud, {}, FitOptions().leaf_size, name)) {
+    parameters.epsilon = automatic_epsilon(radius);
   }
 
   std::vector<double> true_surface_distances(const std::vector<float>& positions) const {

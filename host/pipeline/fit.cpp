@@ -13,6 +13,7 @@
 #include "io/point_cloud_io.h"
 #include "io/skeleton_io.h"
 #include "mesh/mesh_arrays.h"
+#include "pipeline/prepare.h"
 #include "metrics/mesh_metrics.h"
 #include "skeleton/bone_assignment.h"
 #include "skeleton/skeleton_graph.h"
@@ -36,11 +37,6 @@ class StageTimer {
   }
   nlohmann::json seconds = nlohmann::json::object();
 };
-
-double median_of(std::vector<double> values) {
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  return values[values.size() / 2];
-}
 
 nlohmann::json parameters_json(const FitOptions& o, double epsilon, double median_radius) {
   const auto& e = o.evolution;
@@ -73,7 +69,7 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
   SkeletonGraph graph = build_skeleton_graph(skeleton_data, skeleton_path);
   PointIndex<float> cloud_index = timer.run("point_index", [&] { return PointIndex<float>(cloud.points); });
   BoneAssignment bones = timer.run("radius", [&] { return assign_points_to_bones(graph, cloud, skeleton_path, &cloud_index); });
-  double median_radius = median_of(bones.bone_radius);
+  double median_radius = median_bone_radius(bones);
   bones.release_per_point();  // only the radii are needed from here on
 
   InitialMesh initial = timer.run("initial_mesh", [&] { return build_initial_mesh(graph, bones, cloud, options.initial, skeleton_path, &cloud_index); });
@@ -86,7 +82,7 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
   CellTree cells = timer.run("cells", [&] { return build_cell_tree(cloud, options.leaf_size); });
 
   EvolutionParameters parameters = options.evolution;
-  if (parameters.epsilon <= 0) parameters.epsilon = 0.6 * median_radius;
+  if (parameters.epsilon <= 0) parameters.epsilon = automatic_epsilon(median_radius);
   nlohmann::json report;
   report["inputs"] = {{"points", points_path}, {"skeleton", skeleton_path}, {"point_count", cloud.size()},
                       {"skeleton_nodes", graph.node_count()}, {"skeleton_bones", graph.edges.size()},

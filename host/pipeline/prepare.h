@@ -1,0 +1,38 @@
+#pragma once
+
+#include <string>
+
+#include "cells/cell_tree.h"
+#include "core/point_cloud.h"
+#include "core/point_index.h"
+#include "mesh/initial_mesh.h"
+#include "mesh/mesh_arrays.h"
+#include "skeleton/bone_assignment.h"
+#include "skeleton/skeleton_graph.h"
+
+namespace mcquad {
+
+//! Median of the bones' radii: the scale the automatic parameters follow.
+double median_bone_radius(const BoneAssignment& bones);
+
+//! The automatic epsilon (and ray reach) for a cloud of this median radius:
+//! far enough to see the surface from the initial mesh at 0.7 r, well short
+//! of the opposite wall (docs/DESIGN.md).
+double automatic_epsilon(double median_radius);
+
+//! Everything the evolution starts from, built from a cloud and its
+//! skeleton graph: radii, the initial mesh, the cells and the flat arrays.
+//! The pipeline runs the same stages one by one with timings (pipeline/fit.cpp);
+//! tests and benchmarks take them in one call.
+struct EvolutionSetup {
+  BoneAssignment bones;
+  double median_radius = 0;
+  InitialMesh initial;
+  CellTree cells;
+  MeshArrays arrays;
+};
+
+EvolutionSetup prepare_evolution(const SkeletonGraph& graph, const PointCloud& cloud, const InitialMeshOptions& options,
+                                 size_t leaf_size, const std::string& source);
+
+}  // namespace mcquad
