@@ -62,6 +62,7 @@ nlohmann::json parameters_json(const FitOptions& o, double epsilon, double media
 }  // namespace
 
 FitResult run_fit(const std::string& points_path, const std::string& skeleton_path, const FitOptions& options) {
+  if (options.evolve && options.initial.stage != "refined") throw InputError("--stage applies to 'mcquad init' only");
   StageTimer timer;
   PointCloud cloud = timer.run("read_points", [&] { return read_point_cloud(points_path); });
   timer.run("sort_points", [&] { sort_spatially(cloud); return 0; });
@@ -79,7 +80,9 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
   }
   FitResult result;
   result.mesh = std::move(initial.mesh);
-  CellTree cells = timer.run("cells", [&] { return build_cell_tree(cloud, options.leaf_size); });
+  // The initial mesh alone (mcquad init) needs no cells.
+  CellTree cells;
+  if (options.evolve || options.measure) cells = timer.run("cells", [&] { return build_cell_tree(cloud, options.leaf_size); });
 
   EvolutionParameters parameters = options.evolution;
   if (parameters.epsilon <= 0) parameters.epsilon = automatic_epsilon(median_radius);
@@ -90,11 +93,11 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
   report["parameters"] = parameters_json(options, parameters.epsilon, median_radius);
   report["initial_mesh"] = {{"open_ends", initial.open_ends}, {"refinement_levels", initial.refinement_levels},
                             {"statistics", to_json(mesh_statistics(result.mesh))}};
-  report["cells"] = {{"cells", cells.cell_count()}, {"tree_nodes", cells.node_count()}, {"depth", cells.depth},
-                     {"megabytes", double(cells.byte_size()) / 1e6}};
+  if (cells.cell_count() > 0)
+    report["cells"] = {{"cells", cells.cell_count()}, {"tree_nodes", cells.node_count()}, {"depth", cells.depth},
+                       {"megabytes", double(cells.byte_size()) / 1e6}};
 
   if (options.evolve) {
-    if (options.initial.stage != "refined") throw InputError("--stage applies to 'mcquad init' only");
     MeshArrays arrays = flatten_mesh(result.mesh);
     auto backend = timer.run("backend_setup", [&] { return make_backend(options.backend, options.device); });
     timer.run("upload", [&] { backend->load(cells, arrays); return 0; });
