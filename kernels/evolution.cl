@@ -6,7 +6,7 @@
 /* One Jacobi step: every vertex reads the old positions and normals and
  * writes its new position; the normals are updated by update_normals after. */
 __kernel void evolve_vertices(__global const float* positions, __global const float* normals,
-                              __global float* new_positions, __global uint* feasible_rays,
+                              __global float* new_positions,
                               __global const uint* faces, __global const uint* vertex_face_offsets,
                               __global const uint* vertex_faces, __global const float* node_bounds,
                               __global const int* node_children, __global const uint* cell_offsets,
@@ -17,7 +17,6 @@ __kernel void evolve_vertices(__global const float* positions, __global const fl
   mcq_store3(new_positions, v,
              mcq_evolve_vertex(positions, normals, faces, vertex_face_offsets, vertex_faces, node_bounds, node_children,
                                cell_offsets, points, v, params, &feasible));
-  feasible_rays[v] = feasible;
 }
 
 __kernel void relax_tangentially(__global const float* positions, __global const float* normals,

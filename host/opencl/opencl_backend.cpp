@@ -63,7 +63,6 @@ void OpenCLBackend::load(const CellTree& cells, const MeshArrays& mesh) {
     positions_ = upload(mesh.positions, CL_MEM_READ_WRITE);
     next_positions_ = cl::Buffer(context_, CL_MEM_READ_WRITE, std::max<size_t>(mesh.positions.size(), 1) * 4);
     normals_ = cl::Buffer(context_, CL_MEM_READ_WRITE, std::max<size_t>(mesh.positions.size(), 1) * 4);
-    feasible_ = cl::Buffer(context_, CL_MEM_READ_WRITE, std::max<size_t>(vertex_count_, 1) * 4);
     errors_ = cl::Buffer(context_, CL_MEM_READ_WRITE, std::max<size_t>(vertex_count_, 1) * 4);
     reduce_group_size_ = std::min<size_t>(256, device_.device.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>());
     // Power of two for the tree reduction.
@@ -92,7 +91,7 @@ void OpenCLBackend::step(const device::mcq_step_params& params) {
       std::swap(positions_, next_positions_);
       run_normals();
     }
-    set_kernel_args(evolve_kernel_, positions_, normals_, next_positions_, feasible_, faces_, vertex_face_offsets_,
+    set_kernel_args(evolve_kernel_, positions_, normals_, next_positions_, faces_, vertex_face_offsets_,
                     vertex_faces_, node_bounds_, node_children_, cell_offsets_, points_, params, vertex_count_);
     queue_.enqueueNDRangeKernel(evolve_kernel_, cl::NullRange, global_range(vertex_count_, kGroupSize), cl::NDRange(kGroupSize));
     std::swap(positions_, next_positions_);
