@@ -68,14 +68,26 @@ __kernel void reduce_sum(__global const float* values, __global float* partial_s
 
 /* Test hooks: expose single shared functions so tests can compare them with
  * the host build of the same code. */
+/* One work-item per origin: its `rays` consecutive directions traced as
+ * packets, as the step does. */
 __kernel void test_ray_hits(__global const float* origins, __global const float* directions, const float reach,
                             __global const float* node_bounds, __global const int* node_children,
-                            __global int* cells, const uint count) {
+                            __global int* cells, const uint rays, const uint origin_count) {
   uint i = get_global_id(0);
-  if (i >= count) return;
-  float entry;
-  cells[i] = mcq_first_cell_hit(node_bounds, node_children, mcq_load3(origins, i), mcq_load3(directions, i),
-                                reach, &entry);
+  if (i >= origin_count) return;
+  for (uint first = 0; first < rays; first += MCQ_PACKET_SIZE) {
+    int count = rays - first < MCQ_PACKET_SIZE ? (int)(rays - first) : MCQ_PACKET_SIZE;
+    float x[MCQ_PACKET_SIZE], y[MCQ_PACKET_SIZE], z[MCQ_PACKET_SIZE], entries[MCQ_PACKET_SIZE];
+    int hits[MCQ_PACKET_SIZE];
+    for (int k = 0; k < count; ++k) {
+      mcq_vec3 d = mcq_load3(directions, i * rays + first + (uint)k);
+      x[k] = d.x;
+      y[k] = d.y;
+      z[k] = d.z;
+    }
+    mcq_first_cell_hits(node_bounds, node_children, mcq_load3(origins, i), x, y, z, count, reach, hits, entries);
+    for (int k = 0; k < count; ++k) cells[i * rays + first + (uint)k] = hits[k];
+  }
 }
 
 __kernel void test_philox(__global const uint* counters, __global const uint* keys, __global uint* out,

@@ -98,25 +98,26 @@ TEST(CellTree, NearestPointCellMatchesBruteForce) {
   }
 }
 
-//! Brute force: the smallest entry distance of the ray into any leaf box
-//! within reach (-1 when none).
-float first_entry_brute_force(const CellTree& cells, const Eigen::Vector3f& o, const Eigen::Vector3f& d, float reach) {
-  float best = -1;
+struct Hit {
+  int cell = -1;
+  float entry = -1;
+};
+
+//! Brute force: the leaf box entered first within reach, ties to the lower
+//! cell (the rule of mcq_hit_is_better); cell -1 when none.
+Hit first_hit_brute_force(const CellTree& cells, const Eigen::Vector3f& o, const Eigen::Vector3f& d, float reach) {
+  Hit best;
   device::mcq_vec3 inv = device::mcq_make_vec3(device::mcq_safe_inverse(d.x()), device::mcq_safe_inverse(d.y()),
                                                device::mcq_safe_inverse(d.z()));
   for (size_t node = 0; node < cells.node_count(); ++node) {
-    if (cells.node_children[2 * node] >= 0) continue;
+    int child = cells.node_children[2 * node];
+    if (child >= 0) continue;
+    int cell = -1 - child;
     float t = device::mcq_ray_box_entry(cells.node_bounds.data(), int(node), vec(o), inv);
-    if (t >= 0 && t <= reach && (best < 0 || t < best)) best = t;
+    if (t < 0 || t > reach) continue;
+    if (best.cell < 0 || t < best.entry || (t == best.entry && cell < best.cell)) best = {cell, t};
   }
   return best;
-}
-
-//! The node holding a cell's leaf.
-int leaf_of(const CellTree& cells, int cell) {
-  for (size_t node = 0; node < cells.node_count(); ++node)
-    if (cells.node_children[2 * node] == -1 - cell) return int(node);
-  return -1;
 }
 
 TEST(CellTree, FirstCellHitMatchesBruteForce) {
@@ -124,25 +125,55 @@ TEST(CellTree, FirstCellHitMatchesBruteForce) {
   CellTree cells = build_cell_tree(cloud, 16);
   std::mt19937 random(13);
   std::uniform_real_distribution<float> u(-2, 2);
-  int hits = 0;
+  int hits = 0, ties = 0;
   for (int q = 0; q < 500; ++q) {
     Eigen::Vector3f o(u(random), u(random), u(random));
+    if (q % 3 == 0) o = cloud.points[size_t(q)];  // inside several padded boxes
     Eigen::Vector3f d = Eigen::Vector3f(u(random), u(random), u(random)).normalized();
     if (q % 10 == 0) d = Eigen::Vector3f::UnitX();  // axis-parallel rays
     float reach = q % 2 ? 1.0f : 10.0f;
     float entry;
     int cell = device::mcq_first_cell_hit(cells.node_bounds.data(), cells.node_children.data(), vec(o), vec(d), reach, &entry);
-    float expected = first_entry_brute_force(cells, o, d, reach);
-    // Some cell entered first (ties are the traversal's deterministic choice).
-    ASSERT_EQ(cell >= 0, expected >= 0) << "ray " << q;
+    Hit expected = first_hit_brute_force(cells, o, d, reach);
+    ASSERT_EQ(cell, expected.cell) << "ray " << q;
     if (cell < 0) continue;
-    device::mcq_vec3 inv = device::mcq_make_vec3(device::mcq_safe_inverse(d.x()), device::mcq_safe_inverse(d.y()),
-                                                 device::mcq_safe_inverse(d.z()));
-    EXPECT_EQ(device::mcq_ray_box_entry(cells.node_bounds.data(), leaf_of(cells, cell), vec(o), inv), expected) << "ray " << q;
-    EXPECT_EQ(entry, expected);
+    EXPECT_EQ(entry, expected.entry);
     hits += 1;
+    ties += expected.entry == 0;
   }
-  EXPECT_GT(hits, 20);  // the cloud is a thin slab: most random rays miss it
+  EXPECT_GT(hits, 150);  // the cloud is a thin slab: many random rays miss it
+  EXPECT_GT(ties, 100);  // origins on the cloud sit in several boxes at once
+}
+
+TEST(CellTree, PacketTraversalGivesEachRayItsOwnFirstHit) {
+  PointCloud cloud = random_cloud(4000, 17);
+  CellTree cells = build_cell_tree(cloud, 6);
+  std::mt19937 random(19);
+  std::uniform_real_distribution<float> u(-1, 1);
+  for (int q = 0; q < 200; ++q) {
+    Eigen::Vector3f o = q % 2 ? cloud.points[size_t(q)] : Eigen::Vector3f(u(random), u(random), 0.3f * u(random));
+    Eigen::Vector3f axis = Eigen::Vector3f(u(random), u(random), u(random)).normalized();
+    int count = 1 + q % MCQ_PACKET_SIZE;
+    float x[MCQ_PACKET_SIZE], y[MCQ_PACKET_SIZE], z[MCQ_PACKET_SIZE], entries[MCQ_PACKET_SIZE];
+    int hit_cells[MCQ_PACKET_SIZE];
+    for (int r = 0; r < count; ++r) {  // a narrow cone, as a vertex casts, with some stray rays
+      float spread = r % 7 == 6 ? 2.0f : 0.3f;
+      Eigen::Vector3f d = (axis + spread * Eigen::Vector3f(u(random), u(random), u(random))).normalized();
+      x[r] = d.x(), y[r] = d.y(), z[r] = d.z();
+    }
+    float reach = q % 3 ? 0.2f : 5.0f;
+    device::mcq_first_cell_hits(cells.node_bounds.data(), cells.node_children.data(), vec(o), x, y, z, count, reach,
+                                hit_cells, entries);
+    for (int r = 0; r < count; ++r) {
+      float entry;
+      int cell = device::mcq_first_cell_hit(cells.node_bounds.data(), cells.node_children.data(), vec(o),
+                                            device::mcq_make_vec3(x[r], y[r], z[r]), reach, &entry);
+      ASSERT_EQ(hit_cells[r], cell) << "packet " << q << " ray " << r;
+      if (cell >= 0) {
+        EXPECT_EQ(entries[r], entry);
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -10,18 +10,27 @@
 #ifndef MCQ_CELL_TREE_H
 #define MCQ_CELL_TREE_H
 
+/* Entry parameter of a half-line from the origin into the box [lo, hi]
+ * (corners relative to the origin), or -1 when it misses; an origin inside
+ * the box enters at 0. */
+MCQ_FN float mcq_slab_entry(mcq_vec3 lo, mcq_vec3 hi, float inv_x, float inv_y, float inv_z) {
+  float tx1 = lo.x * inv_x, tx2 = hi.x * inv_x;
+  float ty1 = lo.y * inv_y, ty2 = hi.y * inv_y;
+  float tz1 = lo.z * inv_z, tz2 = hi.z * inv_z;
+  float t_enter = MCQ_FMAX(MCQ_FMAX(MCQ_FMIN(tx1, tx2), MCQ_FMIN(ty1, ty2)), MCQ_FMIN(tz1, tz2));
+  float t_exit = MCQ_FMIN(MCQ_FMIN(MCQ_FMAX(tx1, tx2), MCQ_FMAX(ty1, ty2)), MCQ_FMAX(tz1, tz2));
+  /* | rather than ||: no branch, so loops over rays vectorize. */
+  return ((t_exit < 0.0f) | (t_enter > t_exit)) ? -1.0f : MCQ_FMAX(t_enter, 0.0f);
+}
+
 /* Entry parameter of the half-line origin + t*dir (t >= 0) into node's box,
- * or a negative value when it misses. An origin inside the box enters at 0. */
+ * or a negative value when it misses. */
 MCQ_FN float mcq_ray_box_entry(const MCQ_GLOBAL float* node_bounds, int node, mcq_vec3 origin,
                                mcq_vec3 inv_dir) {
   const MCQ_GLOBAL float* b = node_bounds + 6 * node;
-  float tx1 = (b[0] - origin.x) * inv_dir.x, tx2 = (b[3] - origin.x) * inv_dir.x;
-  float ty1 = (b[1] - origin.y) * inv_dir.y, ty2 = (b[4] - origin.y) * inv_dir.y;
-  float tz1 = (b[2] - origin.z) * inv_dir.z, tz2 = (b[5] - origin.z) * inv_dir.z;
-  float t_enter = MCQ_FMAX(MCQ_FMAX(MCQ_FMIN(tx1, tx2), MCQ_FMIN(ty1, ty2)), MCQ_FMIN(tz1, tz2));
-  float t_exit = MCQ_FMIN(MCQ_FMIN(MCQ_FMAX(tx1, tx2), MCQ_FMAX(ty1, ty2)), MCQ_FMAX(tz1, tz2));
-  if (t_exit < 0.0f || t_enter > t_exit) return -1.0f;
-  return MCQ_FMAX(t_enter, 0.0f);
+  return mcq_slab_entry(mcq_make_vec3(b[0] - origin.x, b[1] - origin.y, b[2] - origin.z),
+                        mcq_make_vec3(b[3] - origin.x, b[4] - origin.y, b[5] - origin.z), inv_dir.x, inv_dir.y,
+                        inv_dir.z);
 }
 
 /* A direction component of exactly zero would make 0 * inf = NaN in the slab
@@ -30,34 +39,47 @@ MCQ_FN float mcq_safe_inverse(float d) {
   return 1.0f / (MCQ_FABS(d) > 1e-20f ? d : MCQ_COPYSIGN(1e-20f, d));
 }
 
-/* The first cell whose box the half-line enters within `reach`, -1 when
- * none. Among cells entered at the same distance (a vertex inside several
- * padded boxes enters them all at 0) the first one the traversal reaches
- * wins: children are visited nearer first, the left one on equal entry, so
- * the choice is deterministic and whole subtrees entered no sooner than the
- * best hit are skipped. */
+/* "No cell" while searching: above every cell index, so the tie rule below
+ * needs no special case; reported as -1. */
+#define MCQ_NO_CELL 0x7FFFFFFF
+
+/* Whether entering `cell` at t beats the best hit so far: the first cell
+ * entered within reach, and among cells entered at the same distance (a
+ * vertex inside several padded boxes enters them all at 0) the lowest cell
+ * index. The rule does not depend on the order of the traversal, so the
+ * single-ray and the packet traversals below give the same cell. */
+MCQ_FN int mcq_hit_is_better(float t, int cell, float best_t, int best_cell) {
+  return (t >= 0.0f) & ((t < best_t) | ((t == best_t) & (cell < best_cell)));
+}
+
+/* The first cell whose box the half-line enters within `reach` (ties as in
+ * mcq_hit_is_better), -1 when none; the entry distance goes to *entry. The
+ * reference for the packet traversal; tests compare the two. */
 MCQ_FN int mcq_first_cell_hit(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
                               mcq_vec3 origin, mcq_vec3 dir, float reach, float* entry) {
   mcq_vec3 inv_dir = mcq_make_vec3(mcq_safe_inverse(dir.x), mcq_safe_inverse(dir.y), mcq_safe_inverse(dir.z));
   int stack_node[MCQ_STACK_SIZE];
   float stack_t[MCQ_STACK_SIZE];
-  int top = 0;
   float best_t = reach;
-  int best_cell = -1;
+  int best_cell = MCQ_NO_CELL;
   float t_root = mcq_ray_box_entry(node_bounds, 0, origin, inv_dir);
-  if (t_root < 0.0f || t_root > reach) return -1;
-  stack_node[0] = 0;
-  stack_t[0] = t_root;
-  top = 1;
+  int top = 0;
+  if (t_root >= 0.0f && t_root <= reach) {
+    stack_node[0] = 0;
+    stack_t[0] = t_root;
+    top = 1;
+  }
   while (top > 0) {
     --top;
     int node = stack_node[top];
     float t = stack_t[top];
-    if (best_cell >= 0 ? t >= best_t : t > best_t) continue;
+    if (t > best_t) continue; /* equal entries may still hold a lower cell */
     int left = node_children[2 * node];
     if (left < 0) {
-      best_t = t;
-      best_cell = -1 - left;
+      if (mcq_hit_is_better(t, -1 - left, best_t, best_cell)) {
+        best_t = t;
+        best_cell = -1 - left;
+      }
       continue;
     }
     int right = node_children[2 * node + 1];
@@ -84,7 +106,73 @@ MCQ_FN int mcq_first_cell_hit(const MCQ_GLOBAL float* node_bounds, const MCQ_GLO
     }
   }
   *entry = best_t;
-  return best_cell;
+  return best_cell == MCQ_NO_CELL ? -1 : best_cell;
+}
+
+/* Rays traced together by mcq_first_cell_hits; a vertex's 26 fit in one. */
+#define MCQ_PACKET_SIZE 32
+
+/* mcq_first_cell_hit for `count` (<= MCQ_PACKET_SIZE) rays from one origin,
+ * with the same result for every ray. A vertex's rays fan out from one point
+ * within a narrow cone, so they visit nearly the same nodes: the packet walks
+ * the tree once and tests each node against all rays in straight loops that
+ * compilers vectorize (PoCL's and GCC's alike), instead of one divergent walk
+ * per ray. A node is entered when any ray may still find a better hit in it.
+ * dir_x/y/z hold the directions; cells (-1: no hit) and entries receive the
+ * results. */
+MCQ_FN void mcq_first_cell_hits(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
+                                mcq_vec3 origin, const float* dir_x, const float* dir_y, const float* dir_z,
+                                int count, float reach, int* cells, float* entries) {
+  float inv_x[MCQ_PACKET_SIZE], inv_y[MCQ_PACKET_SIZE], inv_z[MCQ_PACKET_SIZE];
+  float mean_x = 0.0f, mean_y = 0.0f, mean_z = 0.0f;
+  for (int r = 0; r < count; ++r) {
+    inv_x[r] = mcq_safe_inverse(dir_x[r]);
+    inv_y[r] = mcq_safe_inverse(dir_y[r]);
+    inv_z[r] = mcq_safe_inverse(dir_z[r]);
+    mean_x += dir_x[r];
+    mean_y += dir_y[r];
+    mean_z += dir_z[r];
+    entries[r] = reach;
+    cells[r] = MCQ_NO_CELL;
+  }
+  int stack_node[MCQ_STACK_SIZE];
+  int top = 1;
+  stack_node[0] = 0;
+  while (top > 0) {
+    int node = stack_node[--top];
+    const MCQ_GLOBAL float* b = node_bounds + 6 * node;
+    mcq_vec3 lo = mcq_make_vec3(b[0] - origin.x, b[1] - origin.y, b[2] - origin.z);
+    mcq_vec3 hi = mcq_make_vec3(b[3] - origin.x, b[4] - origin.y, b[5] - origin.z);
+    int left = node_children[2 * node];
+    /* A leaf updates the rays it serves better; an inner node is entered
+     * when some ray may still find a better hit in it. Straight loops over
+     * the rays, so they vectorize. */
+    if (left < 0) {
+      int cell = -1 - left;
+      for (int r = 0; r < count; ++r) {
+        float t = mcq_slab_entry(lo, hi, inv_x[r], inv_y[r], inv_z[r]);
+        int better = mcq_hit_is_better(t, cell, entries[r], cells[r]);
+        entries[r] = better ? t : entries[r];
+        cells[r] = better ? cell : cells[r];
+      }
+      continue;
+    }
+    int wanted = 0;
+    for (int r = 0; r < count; ++r) {
+      float t = mcq_slab_entry(lo, hi, inv_x[r], inv_y[r], inv_z[r]);
+      wanted |= (t >= 0.0f) & (t <= entries[r]);
+    }
+    if (!wanted || top + 2 > MCQ_STACK_SIZE) continue;
+    /* Visit first the child the packet's mean direction reaches first. */
+    int right = node_children[2 * node + 1];
+    const MCQ_GLOBAL float* bl = node_bounds + 6 * left;
+    const MCQ_GLOBAL float* br = node_bounds + 6 * right;
+    float towards_right = (br[0] + br[3] - bl[0] - bl[3]) * mean_x + (br[1] + br[4] - bl[1] - bl[4]) * mean_y +
+                          (br[2] + br[5] - bl[2] - bl[5]) * mean_z;
+    stack_node[top++] = towards_right >= 0.0f ? right : left;
+    stack_node[top++] = towards_right >= 0.0f ? left : right;
+  }
+  for (int r = 0; r < count; ++r) cells[r] = cells[r] == MCQ_NO_CELL ? -1 : cells[r];
 }
 
 MCQ_FN float mcq_box_distance_squared(const MCQ_GLOBAL float* node_bounds, int node, mcq_vec3 q) {

@@ -98,15 +98,27 @@ MCQ_FN float mcq_vertex_displacement(const MCQ_GLOBAL float* node_bounds, const 
   mcq_cone_frame(n, &i_axis, &j_axis);
   float sum = 0.0f;
   mcq_uint rays = mcq_ray_count(params.cones, params.generators);
-  for (mcq_uint ray = 0; ray < rays; ++ray) {
-    mcq_vec3 dir = mcq_ray_direction(n, i_axis, j_axis, ray, params.cones, params.generators, params.alpha_max);
-    float entry;
-    int cell = mcq_first_cell_hit(node_bounds, node_children, q, dir, params.reach, &entry);
-    if (cell < 0) continue;
-    float d = mcq_minimal_projection(cell_offsets, points, cell, q, dir, params, vertex, ray);
-    if (MCQ_FABS(d) < params.epsilon) {
-      sum += d;
-      *feasible += 1u;
+  /* Rays go through the tree in packets; the default 26 make one. */
+  for (mcq_uint first = 0; first < rays; first += MCQ_PACKET_SIZE) {
+    int count = rays - first < MCQ_PACKET_SIZE ? (int)(rays - first) : MCQ_PACKET_SIZE;
+    float dir_x[MCQ_PACKET_SIZE], dir_y[MCQ_PACKET_SIZE], dir_z[MCQ_PACKET_SIZE], entries[MCQ_PACKET_SIZE];
+    int cells[MCQ_PACKET_SIZE];
+    for (int k = 0; k < count; ++k) {
+      mcq_vec3 dir = mcq_ray_direction(n, i_axis, j_axis, first + (mcq_uint)k, params.cones, params.generators,
+                                       params.alpha_max);
+      dir_x[k] = dir.x;
+      dir_y[k] = dir.y;
+      dir_z[k] = dir.z;
+    }
+    mcq_first_cell_hits(node_bounds, node_children, q, dir_x, dir_y, dir_z, count, params.reach, cells, entries);
+    for (int k = 0; k < count; ++k) {
+      if (cells[k] < 0) continue;
+      mcq_vec3 dir = mcq_make_vec3(dir_x[k], dir_y[k], dir_z[k]);
+      float d = mcq_minimal_projection(cell_offsets, points, cells[k], q, dir, params, vertex, first + (mcq_uint)k);
+      if (MCQ_FABS(d) < params.epsilon) {
+        sum += d;
+        *feasible += 1u;
+      }
     }
   }
   return *feasible > 0u ? sum / (float)(*feasible) : 0.0f;
