@@ -1,0 +1,64 @@
+#include "pipeline/surfaces.h"
+
+#include <chrono>
+
+#include "io/file_utils.h"
+#include "io/mesh_io.h"
+#include "surfaces/cad_model.h"
+#include "surfaces/surface_checks.h"
+#include "surfaces/surface_model.h"
+
+namespace mcquad {
+namespace {
+
+double diagonal(const QuadMesh& mesh) {
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(INFINITY), high = -low;
+  for (auto v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
+    Eigen::Vector3d q(p[0], p[1], p[2]);
+    low = low.cwiseMin(q);
+    high = high.cwiseMax(q);
+  }
+  return mesh.n_vertices() > 0 ? (high - low).norm() : 1.0;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+nlohmann::json export_surfaces(const QuadMesh& mesh, const PointCloud* cloud, const SurfaceOutputs& outputs) {
+  auto start = std::chrono::steady_clock::now();
+  SurfaceModel model = build_surface_model(mesh);
+  const PatchLayout& layout = model.layout;
+  nlohmann::json report;
+  report["layout"] = {{"regions", layout.regions.size()},
+                      {"irregular_vertices", layout.irregular_vertices},
+                      {"separatrix_edges", layout.separatrix_edges},
+                      {"single_face_fallbacks", layout.single_face_fallbacks}};
+  report["fit_seconds"] = seconds_since(start);
+
+  if (!outputs.cad_path.empty()) {
+    start = std::chrono::steady_clock::now();
+    // Seams meet to rounding error (both sides interpolate the same curve);
+    // the sewing tolerance only has to absorb that.
+    CadModel cad(model.surfaces, 1e-7 * diagonal(mesh));
+    cad.write(outputs.cad_path);
+    CadFileContents read_back = read_cad_file(outputs.cad_path);
+    report["cad_file"] = {{"path", outputs.cad_path},
+                          {"faces_written", cad.face_count()},
+                          {"faces_read_back", read_back.faces},
+                          {"bspline_faces_read_back", read_back.bspline_faces},
+                          {"free_edges_read_back", read_back.free_edges},
+                          {"seconds", seconds_since(start)}};
+  }
+  if (!outputs.control_nets_path.empty()) write_mesh(outputs.control_nets_path, control_net_mesh(model.surfaces));
+
+  start = std::chrono::steady_clock::now();
+  report["checks"] = to_json(check_surfaces(mesh, layout, model.surfaces, cloud, outputs.tangent_tolerance_degrees));
+  report["checks_seconds"] = seconds_since(start);
+  return report;
+}
+
+}  // namespace mcquad

@@ -1,0 +1,210 @@
+#include "surfaces/cad_model.h"
+
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_Sewing.hxx>
+#include <BRep_Builder.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <IFSelect_ReturnStatus.hxx>
+#include <IGESControl_Controller.hxx>
+#include <IGESControl_Reader.hxx>
+#include <IGESControl_Writer.hxx>
+#include <Interface_Static.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <STEPControl_Reader.hxx>
+#include <STEPControl_Writer.hxx>
+#include <Standard_Failure.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array2OfPnt.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Shape.hxx>
+#include <gp_Pnt.hxx>
+#include <gp_Vec.hxx>
+
+#include "core/errors.h"
+#include "io/file_utils.h"
+
+namespace mcquad {
+namespace {
+
+//! Where OpenCASCADE's periodic uniform cubic puts the pole centred at knot
+//! k: it numbers from the first pole acting on [0, 1], one before ours.
+constexpr int kPeriodicPoleShift = 1;
+
+//! OpenCASCADE reports through its messenger on standard output; the tool's
+//! stdout is the user's, so the printers go.
+void silence_opencascade() {
+  static bool done = [] {
+    Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_Printer));
+    return true;
+  }();
+  (void)done;
+}
+
+void fill_knots(int poles, bool periodic, TColStd_Array1OfReal& knots, TColStd_Array1OfInteger& mults) {
+  int distinct = periodic ? poles + 1 : poles - 2;
+  knots.Resize(1, distinct, false);
+  mults.Resize(1, distinct, false);
+  for (int k = 1; k <= distinct; ++k) {
+    knots(k) = double(k - 1);
+    mults(k) = periodic || (k > 1 && k < distinct) ? 1 : 4;
+  }
+}
+
+int occt_pole_index(int k, int poles, bool periodic) {
+  return periodic ? (k + kPeriodicPoleShift + poles) % poles + 1 : k + 1;
+}
+
+Handle(Geom_BSplineSurface) to_occt(const BSplineSurface& s) {
+  TColgp_Array2OfPnt poles(1, s.poles_u, 1, s.poles_v);
+  for (int j = 0; j < s.poles_v; ++j)
+    for (int i = 0; i < s.poles_u; ++i) {
+      const Eigen::Vector3d& p = s.pole(i, j);
+      poles(occt_pole_index(i, s.poles_u, s.periodic_u), occt_pole_index(j, s.poles_v, s.periodic_v)) =
+          gp_Pnt(p.x(), p.y(), p.z());
+    }
+  TColStd_Array1OfReal u_knots(1, 1), v_knots(1, 1);
+  TColStd_Array1OfInteger u_mults(1, 1), v_mults(1, 1);
+  fill_knots(s.poles_u, s.periodic_u, u_knots, u_mults);
+  fill_knots(s.poles_v, s.periodic_v, v_knots, v_mults);
+  return new Geom_BSplineSurface(poles, u_knots, v_knots, u_mults, v_mults, 3, 3, s.periodic_u, s.periodic_v);
+}
+
+std::string failure_text(const Standard_Failure& failure) {
+  const char* text = failure.GetMessageString();
+  return std::string(failure.DynamicType()->Name()) + (text && *text ? std::string(": ") + text : "");
+}
+
+enum class CadFormat { kStep, kIges };
+
+CadFormat format_of(const std::string& path) {
+  std::string extension = file_extension(path);
+  if (extension == "step" || extension == "stp") return CadFormat::kStep;
+  if (extension == "iges" || extension == "igs") return CadFormat::kIges;
+  throw OutputError(path + ": unknown CAD format '." + extension + "' (use .step, .stp, .iges or .igs)");
+}
+
+}  // namespace
+
+struct SurfaceEvaluator::Impl {
+  Handle(Geom_BSplineSurface) surface;
+};
+
+SurfaceEvaluator::SurfaceEvaluator(const BSplineSurface& surface) : impl_(std::make_unique<Impl>()) {
+  try {
+    impl_->surface = to_occt(surface);
+  } catch (const Standard_Failure& failure) {
+    throw UnsupportedError("surfaces: OpenCASCADE refused a B-spline surface (" + failure_text(failure) + ")");
+  }
+}
+SurfaceEvaluator::~SurfaceEvaluator() = default;
+SurfaceEvaluator::SurfaceEvaluator(SurfaceEvaluator&&) noexcept = default;
+SurfaceEvaluator& SurfaceEvaluator::operator=(SurfaceEvaluator&&) noexcept = default;
+
+Eigen::Vector3d SurfaceEvaluator::point(double u, double v) const {
+  gp_Pnt p = impl_->surface->Value(u, v);
+  return {p.X(), p.Y(), p.Z()};
+}
+
+Eigen::Vector3d SurfaceEvaluator::normal(double u, double v) const {
+  gp_Pnt p;
+  gp_Vec du, dv;
+  impl_->surface->D1(u, v, p, du, dv);
+  gp_Vec n = du.Crossed(dv);
+  double length = n.Magnitude();
+  if (length == 0) return Eigen::Vector3d::Zero();
+  return Eigen::Vector3d(n.X(), n.Y(), n.Z()) / length;
+}
+
+struct CadModel::Impl {
+  TopoDS_Shape shape;
+  size_t faces = 0;
+  size_t free_edges = 0;
+};
+
+CadModel::CadModel(const std::vector<BSplineSurface>& surfaces, double tolerance) : impl_(std::make_unique<Impl>()) {
+  silence_opencascade();
+  try {
+    BRepBuilderAPI_Sewing sewing(tolerance);
+    for (const BSplineSurface& surface : surfaces) {
+      SurfaceEvaluator evaluator(surface);
+      BRepBuilderAPI_MakeFace face(evaluator.impl_->surface, tolerance);
+      if (!face.IsDone()) throw UnsupportedError("surfaces: OpenCASCADE could not make a face of a B-spline surface");
+      sewing.Add(face.Face());
+    }
+    sewing.Perform();
+    impl_->shape = sewing.SewedShape();
+    impl_->free_edges = size_t(sewing.NbFreeEdges());
+  } catch (const Standard_Failure& failure) {
+    throw UnsupportedError("surfaces: OpenCASCADE failed to sew the faces (" + failure_text(failure) + ")");
+  }
+  for (TopExp_Explorer explorer(impl_->shape, TopAbs_FACE); explorer.More(); explorer.Next()) impl_->faces += 1;
+}
+CadModel::~CadModel() = default;
+
+size_t CadModel::face_count() const { return impl_->faces; }
+size_t CadModel::free_edges() const { return impl_->free_edges; }
+
+void CadModel::write(const std::string& path) const {
+  CadFormat format = format_of(path);
+  write_atomically(path, [&](const std::string& temporary) {
+    try {
+      if (format == CadFormat::kStep) {
+        STEPControl_Writer writer;
+        if (writer.Transfer(impl_->shape, STEPControl_AsIs) != IFSelect_RetDone ||
+            writer.Write(temporary.c_str()) != IFSelect_RetDone)
+          throw OutputError(path + ": OpenCASCADE could not write the STEP file");
+      } else {
+        IGESControl_Controller::Init();
+        IGESControl_Writer writer("MM", 1);  // mode 1: faces as B-rep entities
+        if (!writer.AddShape(impl_->shape)) throw OutputError(path + ": OpenCASCADE could not convert the shape to IGES");
+        writer.ComputeModel();
+        if (!writer.Write(temporary.c_str())) throw OutputError(path + ": OpenCASCADE could not write the IGES file");
+      }
+    } catch (const Standard_Failure& failure) {
+      throw OutputError(path + ": OpenCASCADE failed writing (" + failure_text(failure) + ")");
+    }
+  });
+}
+
+CadFileContents read_cad_file(const std::string& path) {
+  silence_opencascade();
+  TopoDS_Shape shape;
+  try {
+    bool step = format_of(path) == CadFormat::kStep;
+    if (step) {
+      STEPControl_Reader reader;
+      if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) throw InputError(path + ": OpenCASCADE cannot read this STEP file");
+      reader.TransferRoots();
+      shape = reader.OneShape();
+    } else {
+      IGESControl_Controller::Init();
+      IGESControl_Reader reader;
+      if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) throw InputError(path + ": OpenCASCADE cannot read this IGES file");
+      reader.TransferRoots();
+      shape = reader.OneShape();
+    }
+  } catch (const Standard_Failure& failure) {
+    throw InputError(path + ": OpenCASCADE failed reading (" + failure_text(failure) + ")");
+  } catch (const OutputError& error) {  // an unknown extension, here on the reading side
+    throw InputError(error.what());
+  }
+  CadFileContents contents;
+  for (TopExp_Explorer explorer(shape, TopAbs_FACE); explorer.More(); explorer.Next()) {
+    contents.faces += 1;
+    BRepAdaptor_Surface surface(TopoDS::Face(explorer.Current()));
+    contents.bspline_faces += surface.GetType() == GeomAbs_BSplineSurface;
+  }
+  BRepBuilderAPI_Sewing sewing;
+  sewing.Load(shape);
+  sewing.Perform();
+  contents.free_edges = size_t(sewing.NbFreeEdges());
+  return contents;
+}
+
+}  // namespace mcquad

@@ -1,0 +1,67 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "surfaces/spline_interpolation.h"
+
+namespace mcquad {
+
+//! Evaluates one of our B-spline surfaces through OpenCASCADE's
+//! Geom_BSplineSurface, the same object the CAD files are written from, so
+//! what the checks measure is what a CAD system reads.
+class SurfaceEvaluator {
+ public:
+  explicit SurfaceEvaluator(const BSplineSurface& surface);
+  ~SurfaceEvaluator();
+  SurfaceEvaluator(SurfaceEvaluator&&) noexcept;
+  SurfaceEvaluator& operator=(SurfaceEvaluator&&) noexcept;
+
+  Eigen::Vector3d point(double u, double v) const;
+  //! Unit normal (derivative in u cross derivative in v); zero where degenerate.
+  Eigen::Vector3d normal(double u, double v) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  friend class CadModel;
+};
+
+//! What OpenCASCADE found in a STEP or IGES file it read.
+struct CadFileContents {
+  size_t faces = 0;
+  size_t bspline_faces = 0;  //!< faces whose surface is a B-spline surface
+  size_t free_edges = 0;     //!< edges of only one face after sewing (the open boundary)
+};
+
+//! The surfaces as one OpenCASCADE shape: a face per surface, sewn along the
+//! shared sides into a shell.
+class CadModel {
+ public:
+  //! `tolerance`: the sewing tolerance, in model units.
+  CadModel(const std::vector<BSplineSurface>& surfaces, double tolerance);
+  ~CadModel();
+  CadModel(const CadModel&) = delete;
+  CadModel& operator=(const CadModel&) = delete;
+
+  size_t face_count() const;
+  //! Edges used by one face only after sewing: the mesh's open boundary, or
+  //! sides that did not meet within the tolerance.
+  size_t free_edges() const;
+
+  //! STEP (.step, .stp) or IGES (.iges, .igs) by extension, written
+  //! atomically. OutputError naming the file on failure or another extension.
+  void write(const std::string& path) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+//! Reads a STEP or IGES file with OpenCASCADE and counts what it holds.
+//! InputError naming the file when OpenCASCADE cannot read it.
+CadFileContents read_cad_file(const std::string& path);
+
+}  // namespace mcquad

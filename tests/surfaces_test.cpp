@@ -1,0 +1,225 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "core/errors.h"
+#include "evolution/evolve.h"
+#include "evolution/serial_backend.h"
+#include "helpers.h"
+#include "mesh/initial_mesh.h"
+#include "metrics/mesh_metrics.h"
+#include "pipeline/prepare.h"
+#include "skeleton/skeleton_graph.h"
+#include "surfaces/cad_model.h"
+#include "surfaces/surface_checks.h"
+#include "surfaces/surface_model.h"
+
+namespace mcquad {
+namespace {
+
+constexpr double kMajor = 3.0, kMinor = 1.0;
+
+Eigen::Vector3d torus_point(double along, double around) {
+  double ring = kMajor + kMinor * std::cos(around);
+  return {ring * std::cos(along), ring * std::sin(along), kMinor * std::sin(around)};
+}
+
+//! A torus of `along` x `around` quads whose rings come back rotated by
+//! `shift` steps when the loop closes (as a swept loop's rings may).
+QuadMesh torus_grid(int along, int around, int shift) {
+  QuadMesh mesh;
+  std::vector<QuadMesh::VertexHandle> v;
+  for (int i = 0; i < along; ++i)
+    for (int j = 0; j < around; ++j) {
+      // Twist the rings gradually so that ring `along` is ring 0 turned by `shift`.
+      double a = 2 * M_PI * i / along, b = 2 * M_PI * (j + double(shift) * i / along) / around;
+      Eigen::Vector3d p = torus_point(a, b);
+      v.push_back(mesh.add_vertex(QuadMesh::Point(p.x(), p.y(), p.z())));
+    }
+  auto at = [&](int i, int j) {
+    if (i == along) i = 0, j += shift;
+    return v[size_t(i) * size_t(around) + size_t(((j % around) + around) % around)];
+  };
+  for (int i = 0; i < along; ++i)
+    for (int j = 0; j < around; ++j) mesh.add_face(at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j));
+  return mesh;
+}
+
+double torus_distance(const Eigen::Vector3d& p) {
+  return std::abs(std::hypot(std::hypot(p.x(), p.y()) - kMajor, p.z()) - kMinor);
+}
+
+Eigen::Vector3d point_of(const QuadMesh& mesh, int v) {
+  const auto& p = mesh.point(QuadMesh::VertexHandle(v));
+  return {p[0], p[1], p[2]};
+}
+
+//! Every surface passes through its region's vertices at their parameters.
+void expect_interpolates_vertices(const QuadMesh& mesh, const SurfaceModel& model, double tolerance) {
+  for (size_t r = 0; r < model.surfaces.size(); ++r) {
+    const PatchRegion& region = model.layout.regions[r];
+    SurfaceEvaluator surface(model.surfaces[r]);
+    for (int j = 0; j < region.rows; ++j)
+      for (int i = 0; i < region.columns; ++i)
+        ASSERT_LT((surface.point(i, j) - point_of(mesh, region.vertex(i, j))).norm(), tolerance)
+            << "region " << r << " vertex (" << i << ", " << j << ")";
+  }
+}
+
+//! Each face lies in exactly one region, and the region's grid holds its corners.
+void expect_partition(const QuadMesh& mesh, const PatchLayout& layout) {
+  std::vector<int> seen(mesh.n_faces(), 0);
+  for (const PatchRegion& region : layout.regions)
+    for (int f : region.faces) seen[size_t(f)] += 1;
+  for (int count : seen) ASSERT_EQ(count, 1);
+  EXPECT_EQ(layout.single_face_fallbacks, 0u);
+}
+
+TEST(PatchLayout, TorusIsOneDoublyPeriodicSurface) {
+  QuadMesh mesh = torus_grid(24, 10, 0);
+  SurfaceModel model = build_surface_model(mesh);
+  ASSERT_EQ(model.layout.regions.size(), 1u);
+  const PatchRegion& region = model.layout.regions[0];
+  EXPECT_TRUE(region.periodic_u && region.periodic_v);
+  EXPECT_EQ(region.columns * region.rows, 240);
+  expect_interpolates_vertices(mesh, model, 1e-9);
+  SurfaceChecks checks = check_surfaces(mesh, model.layout, model.surfaces, nullptr);
+  EXPECT_EQ(checks.seam_edges, 0u);
+  // At the middle of every face, the smooth surface lies far closer to the
+  // true torus than the flat quad does.
+  SurfaceEvaluator surface(model.surfaces[0]);
+  double worst_spline = 0, worst_quad = 0;
+  for (auto f : mesh.faces()) {
+    const auto& corners = model.layout.face_corner_parameters[size_t(f.idx())];
+    Eigen::Vector2d middle = (corners[0] + corners[1] + corners[2] + corners[3]) / 4;
+    Eigen::Vector3d quad_middle = Eigen::Vector3d::Zero();
+    for (auto v : mesh.fv_range(f)) quad_middle += point_of(mesh, v.idx()) / 4;
+    worst_spline = std::max(worst_spline, torus_distance(surface.point(middle.x(), middle.y())));
+    worst_quad = std::max(worst_quad, torus_distance(quad_middle));
+  }
+  EXPECT_LT(worst_spline, 0.05 * worst_quad);
+}
+
+TEST(PatchLayout, TorusClosingWithARotationHasOneSmoothSelfSeam) {
+  QuadMesh mesh = torus_grid(24, 10, 3);
+  SurfaceModel model = build_surface_model(mesh);
+  ASSERT_EQ(model.layout.regions.size(), 1u);
+  const PatchRegion& region = model.layout.regions[0];
+  EXPECT_FALSE(region.periodic_u);
+  EXPECT_TRUE(region.periodic_v);
+  EXPECT_EQ(region.columns, 25);  // the first ring again, turned, closes the surface
+  EXPECT_EQ(region.rows, 10);
+  expect_interpolates_vertices(mesh, model, 1e-9);
+  SurfaceChecks checks = check_surfaces(mesh, model.layout, model.surfaces, nullptr);
+  EXPECT_EQ(checks.seam_edges, 10u);
+  EXPECT_LT(checks.max_position_gap, 1e-9);
+  // Every seam vertex is regular: central differences on both sides agree.
+  EXPECT_LT(checks.max_normal_gap_degrees, 1e-6);
+}
+
+struct ShapeCase {
+  const char* shape;
+  size_t points;
+};
+
+class SurfacesOnShapes : public ::testing::TestWithParam<ShapeCase> {};
+
+TEST_P(SurfacesOnShapes, RegionsAreGridsAndSurfacesMeetAlongTheirSeams) {
+  GeneratedShape shape = test::small_shape(GetParam().shape, GetParam().points);
+  SkeletonGraph graph = build_skeleton_graph(shape.skeleton, GetParam().shape);
+  EvolutionSetup setup = prepare_evolution(graph, shape.cloud, {}, 6, GetParam().shape);
+  EvolutionParameters parameters;
+  parameters.epsilon = automatic_epsilon(setup.median_radius);
+  SerialBackend backend;
+  backend.load(setup.cells, setup.arrays);
+  QuadMesh mesh = setup.initial.mesh;
+  set_positions(mesh, evolve(backend, parameters).positions);
+  SurfaceModel model = build_surface_model(mesh);
+  expect_partition(mesh, model.layout);
+  const double scale = setup.median_radius;
+  expect_interpolates_vertices(mesh, model, 1e-9 * scale);
+  SurfaceChecks checks = check_surfaces(mesh, model.layout, model.surfaces, &shape.cloud);
+  EXPECT_EQ(checks.seam_edges > 0, model.layout.irregular_vertices > 0);
+  EXPECT_LT(checks.max_position_gap, 1e-9 * scale);  // both sides interpolate the same curve
+  // Where the quad mesh is smooth, tangent planes agree across seams away
+  // from irregular vertices (both sides take the same harmonic tangents);
+  // the rest is reported, site by site, with the mesh's own crease there.
+  EXPECT_LT(checks.max_normal_gap_away_from_irregular_degrees, 2.0);
+  EXPECT_LE(checks.farthest_gap_from_irregular, 3);
+  for (const NormalGapSite& site : checks.sites) EXPECT_NE(site.valence, mesh.is_boundary(QuadMesh::VertexHandle(site.vertex)) ? 3 : 4);
+  // The smooth surfaces stay within the quad mesh's own distance to the cloud.
+  EXPECT_LE(checks.to_cloud.mean, checks.mesh_to_cloud.mean);
+  EXPECT_LE(checks.to_cloud.p95, 1.02 * checks.mesh_to_cloud.p95);
+  EXPECT_LT(checks.to_mesh.p95, 0.05 * scale);
+}
+
+INSTANTIATE_TEST_SUITE_P(Shapes, SurfacesOnShapes,
+                         ::testing::Values(ShapeCase{"t-shape", 20000}, ShapeCase{"bent-tube", 20000},
+                                           ShapeCase{"theta", 30000}, ShapeCase{"tube-frame", 40000}),
+                         [](const auto& param_info) {
+                           std::string name = param_info.param.shape;
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
+
+//! The paper's Fig. 7d: the torus knot's irregularity-free mesh becomes one
+//! surface, periodic around the tube.
+TEST(SurfacesOnTheKnot, OnePeriodicSurfaceWithinTheMeshsDistance) {
+  GeneratedShape shape = test::small_shape("torus-knot", 80000);
+  EvolutionSetup setup = prepare_evolution(build_skeleton_graph(shape.skeleton, "knot"), shape.cloud, {}, 6, "knot");
+  EvolutionParameters parameters;
+  parameters.epsilon = automatic_epsilon(setup.median_radius);
+  parameters.iterations = 10;
+  SerialBackend backend;
+  backend.load(setup.cells, setup.arrays);
+  QuadMesh mesh = setup.initial.mesh;
+  set_positions(mesh, evolve(backend, parameters).positions);
+  SurfaceModel model = build_surface_model(mesh);
+  ASSERT_EQ(model.surfaces.size(), 1u);
+  EXPECT_TRUE(model.surfaces[0].periodic_v || model.surfaces[0].periodic_u);
+  SurfaceChecks checks = check_surfaces(mesh, model.layout, model.surfaces, &shape.cloud);
+  EXPECT_LE(checks.to_cloud.mean, checks.mesh_to_cloud.mean);
+  EXPECT_LE(checks.to_cloud.p95, checks.mesh_to_cloud.p95);
+  // A loop whose rings close rotated keeps one seam, tangent-continuous.
+  EXPECT_LT(checks.max_normal_gap_degrees, 1e-6);
+  EXPECT_LT(checks.max_position_gap, 1e-9 * setup.median_radius);
+}
+
+TEST(CadFiles, StepAndIgesReadBackWithEverySurface) {
+  test::TempDir dir;
+  QuadMesh mesh = torus_grid(24, 10, 3);
+  SurfaceModel model = build_surface_model(mesh);
+  CadModel cad(model.surfaces, 1e-7);
+  EXPECT_EQ(cad.face_count(), model.surfaces.size());
+  for (const char* name : {"torus.step", "torus.igs"}) {
+    cad.write(dir.file(name));
+    CadFileContents contents = read_cad_file(dir.file(name));
+    EXPECT_EQ(contents.faces, model.surfaces.size()) << name;
+    EXPECT_EQ(contents.bspline_faces, contents.faces) << name;
+  }
+  GeneratedShape shape = test::small_shape("t-shape", 20000);
+  EvolutionSetup setup = prepare_evolution(build_skeleton_graph(shape.skeleton, "t"), shape.cloud, {}, 6, "t");
+  SurfaceModel t_model = build_surface_model(setup.initial.mesh);
+  CadModel t_cad(t_model.surfaces, 1e-6 * setup.median_radius);
+  t_cad.write(dir.file("t.step"));
+  CadFileContents contents = read_cad_file(dir.file("t.step"));
+  EXPECT_EQ(contents.faces, t_model.surfaces.size());
+  EXPECT_EQ(contents.bspline_faces, contents.faces);
+  // Sewn along every seam: the only free edges are the open ends' rims.
+  EXPECT_EQ(mesh_statistics(setup.initial.mesh).boundary_loops > 0, contents.free_edges > 0);
+}
+
+TEST(CadFiles, BadPathsAndFilesFailClearly) {
+  test::TempDir dir;
+  SurfaceModel model = build_surface_model(torus_grid(12, 8, 0));
+  CadModel cad(model.surfaces, 1e-7);
+  EXPECT_THROW(cad.write(dir.file("out.obj")), OutputError);
+  EXPECT_THROW(cad.write(dir.file("missing/out.step")), OutputError);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("missing/out.step")));
+  EXPECT_THROW(read_cad_file(dir.write("broken.step", "ISO-10303-21;\nthis is not STEP\n")), InputError);
+  EXPECT_THROW(read_cad_file(dir.file("absent.igs")), InputError);
+}
+
+}  // namespace
+}  // namespace mcquad
