@@ -13,6 +13,7 @@
 #include "io/skeleton_io.h"
 #include "metrics/mesh_metrics.h"
 #include "pipeline/fit.h"
+#include "pipeline/surfaces.h"
 #include "skeleton/skeleton_graph.h"
 #ifdef MCQUAD_WITH_OPENCL
 #include "opencl/device_selection.h"
@@ -32,6 +33,11 @@ void check_output_path(const std::string& path, const std::vector<std::string>& 
   if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
     throw OutputError(path + ": cannot write: directory " + dir.string() + " does not exist");
 }
+
+void print_surface_summary(const nlohmann::json& report, const std::string& cad_path, bool with_cloud);
+
+const std::vector<std::string> kMeshExtensions = {"obj", "off", "ply", "om"};
+const std::vector<std::string> kCadExtensions = {"step", "stp", "iges", "igs"};
 
 struct FitCommand {
   std::string points, skeleton, output, report, backend = "auto", ends = "auto", stage = "refined", mode = "robust";
@@ -82,11 +88,15 @@ struct FitCommand {
         ->check(CLI::NonNegativeNumber)->capture_default_str();
     app->add_option("--leaf-size", options.leaf_size, "maximal points per cell")->check(CLI::Range(size_t(1), size_t(1) << 20))->capture_default_str();
     app->add_option("--snapshots", options.snapshots_directory, "write the mesh after every iteration into this directory");
+    app->add_option("--surfaces", options.surfaces.cad_path, "also write the final mesh as B-spline surfaces (.step, .stp, .iges, .igs)");
+    app->add_option("--control-nets", options.surfaces.control_nets_path, "also write the surfaces' control nets (.obj, .off, .ply, .om)");
   }
 
   int run(bool evolution) {
-    check_output_path(output, {"obj", "off", "ply", "om"});
+    check_output_path(output, kMeshExtensions);
     if (!report.empty()) check_output_path(report, {"json"});
+    if (!options.surfaces.cad_path.empty()) check_output_path(options.surfaces.cad_path, kCadExtensions);
+    if (!options.surfaces.control_nets_path.empty()) check_output_path(options.surfaces.control_nets_path, kMeshExtensions);
     options.evolve = evolution;
     options.evolution.alpha_max = alpha_degrees * M_PI / 180.0;
     options.evolution.mode = mode == "paper" ? EvolutionParameters::Mode::kPaper : EvolutionParameters::Mode::kRobust;
@@ -118,6 +128,8 @@ struct FitCommand {
                   q["cloud_to_mesh"]["mean"].get<double>(), q["cloud_to_mesh"]["p95"].get<double>(),
                   q["intersecting_face_pairs"].get<size_t>());
     }
+    if (r.contains("surfaces") && r["surfaces"].contains("cad_file"))
+      print_surface_summary(r["surfaces"], options.surfaces.cad_path, true);
     if (!report.empty()) std::printf("report: %s\n", report.c_str());
   }
 };
@@ -174,6 +186,41 @@ int run_metrics(const std::string& mesh_path, const std::string& points_path, co
   return kExitOk;
 }
 
+//! Two to four lines on the surfaces: file, seams, distances.
+void print_surface_summary(const nlohmann::json& report, const std::string& cad_path, bool with_cloud) {
+  const auto& checks = report["checks"];
+  std::printf("surfaces: %s (%zu B-spline faces read back, %zu periodic)\n", cad_path.c_str(),
+              report["cad_file"]["faces_read_back"].get<size_t>(), checks["periodic_surfaces"].get<size_t>());
+  std::printf("seams: %zu edges, position gap %.3g, tangent-continuous within %.3g deg on %zu, max normal gap %.3g deg "
+              "(%.3g deg on smooth parts of the mesh two or more edges from irregular vertices)\n",
+              checks["seam_edges"].get<size_t>(), checks["max_position_gap"].get<double>(),
+              checks["tangent_tolerance_degrees"].get<double>(), checks["seam_edges_tangent_continuous"].get<size_t>(),
+              checks["max_normal_gap_degrees"].get<double>(),
+              checks["max_normal_gap_degrees_smooth_mesh_two_or_more_edges_from_irregular"].get<double>());
+  std::printf("distance to the quad mesh: mean %.4g p95 %.4g max %.4g\n", checks["distance_to_quad_mesh"]["mean"].get<double>(),
+              checks["distance_to_quad_mesh"]["p95"].get<double>(), checks["distance_to_quad_mesh"]["max"].get<double>());
+  if (with_cloud)
+    std::printf("distance to the cloud: mean %.4g p95 %.4g (the quad mesh's own: mean %.4g p95 %.4g)\n",
+                checks["distance_to_cloud"]["mean"].get<double>(), checks["distance_to_cloud"]["p95"].get<double>(),
+                checks["quad_mesh_distance_to_cloud"]["mean"].get<double>(),
+                checks["quad_mesh_distance_to_cloud"]["p95"].get<double>());
+}
+
+int run_surfaces(const std::string& mesh_path, const std::string& points_path, const SurfaceOutputs& outputs,
+                 const std::string& json_path) {
+  check_output_path(outputs.cad_path, kCadExtensions);
+  if (!outputs.control_nets_path.empty()) check_output_path(outputs.control_nets_path, kMeshExtensions);
+  if (!json_path.empty()) check_output_path(json_path, {"json"});
+  QuadMesh mesh = read_mesh(mesh_path);
+  if (mesh.n_faces() == 0) throw InputError(mesh_path + ": the mesh has no faces");
+  PointCloud cloud;
+  if (!points_path.empty()) cloud = read_point_cloud(points_path);
+  nlohmann::json report = export_surfaces(mesh, points_path.empty() ? nullptr : &cloud, outputs);
+  if (!json_path.empty()) write_text_atomically(json_path, report.dump(2) + "\n");
+  print_surface_summary(report, outputs.cad_path, !points_path.empty());
+  return kExitOk;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -220,6 +267,18 @@ int main(int argc, char** argv) {
   metrics_app->add_option("--surface", metrics_surface, "a generated shape's NAME.surface.json: distances to the true surface");
   metrics_app->add_option("--json", metrics_json, "also write the metrics here");
 
+  std::string surfaces_mesh, surfaces_points, surfaces_json;
+  SurfaceOutputs surface_outputs;
+  auto* surfaces_app = app.add_subcommand("surfaces", "B-spline surfaces of a quad mesh, written as STEP or IGES (the paper's Fig. 7d)");
+  surfaces_app->add_option("MESH", surfaces_mesh, "quad mesh (.obj, .off, .ply, .om)")->required();
+  surfaces_app->add_option("-o,--output", surface_outputs.cad_path, "output (.step, .stp, .iges, .igs)")->required();
+  surfaces_app->add_option("--cloud", surfaces_points, "point cloud, to measure the surfaces' distance to it");
+  surfaces_app->add_option("--control-nets", surface_outputs.control_nets_path, "also write the control nets (.obj, .off, .ply, .om)");
+  surfaces_app->add_option("--tangent-tolerance", surface_outputs.tangent_tolerance_degrees,
+                           "normal gap, degrees, under which a seam counts as tangent-continuous")
+      ->check(CLI::Range(0.0, 90.0))->capture_default_str();
+  surfaces_app->add_option("--json", surfaces_json, "write the surface report here");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -232,6 +291,7 @@ int main(int argc, char** argv) {
     if (*init_app) return init.run(false);
     if (*generate_app) return run_generate(shape_name, shape_dir, shape_options);
     if (app.got_subcommand("devices")) return run_devices();
+    if (*surfaces_app) return run_surfaces(surfaces_mesh, surfaces_points, surface_outputs, surfaces_json);
     if (*metrics_app) return run_metrics(metrics_mesh, metrics_points, metrics_skeleton, metrics_surface, metrics_leaf, metrics_json);
   } catch (const InputError& e) {
     std::fprintf(stderr, "mcquad: error: %s\n", e.what());

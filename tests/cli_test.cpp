@@ -29,7 +29,7 @@ CliRun mcquad(const std::string& arguments) {
 
 TEST(Cli, VersionAndHelp) {
   EXPECT_EQ(mcquad("--version").code, 0);
-  for (const char* sub : {"fit", "init", "generate", "devices", "metrics"}) EXPECT_EQ(mcquad(std::string(sub) + " --help").code, 0) << sub;
+  for (const char* sub : {"fit", "init", "generate", "devices", "metrics", "surfaces"}) EXPECT_EQ(mcquad(std::string(sub) + " --help").code, 0) << sub;
   EXPECT_EQ(mcquad("").code, kExitUsage);
   EXPECT_EQ(mcquad("fit a.ply").code, kExitUsage);
 }
@@ -96,6 +96,35 @@ TEST(Cli, BadInputsGiveOneLineAndDocumentedCodes) {
   CliRun device = mcquad("fit " + points + " " + skeleton + " -o " + dir.file("o.obj") + " --backend opencl --device 99");
   EXPECT_EQ(device.code, kExitDevice) << device.output;
   EXPECT_FALSE(std::filesystem::exists(dir.file("o.obj")));
+}
+
+TEST(Cli, SurfacesFromFitAndFromAMesh) {
+  test::TempDir dir;
+  ASSERT_EQ(mcquad("generate t-shape -o " + dir.file("") + " --points 15000").code, 0);
+  std::string points = dir.file("t-shape.ply"), skeleton = dir.file("t-shape.skeleton.obj");
+  CliRun fit = mcquad("fit " + points + " " + skeleton + " -o " + dir.file("t.obj") + " --backend serial --iterations 5" +
+                      " --surfaces " + dir.file("t.step") + " --control-nets " + dir.file("nets.obj") + " --report " + dir.file("r.json"));
+  ASSERT_EQ(fit.code, 0) << fit.output;
+  EXPECT_NE(fit.output.find("B-spline faces read back"), std::string::npos) << fit.output;
+  std::ifstream report(dir.file("r.json"));
+  auto json = nlohmann::json::parse(report);
+  const auto& surfaces = json["surfaces"];
+  EXPECT_EQ(surfaces["cad_file"]["faces_read_back"], surfaces["layout"]["regions"]);
+  EXPECT_TRUE(std::filesystem::exists(dir.file("nets.obj")));
+  CliRun iges = mcquad("surfaces " + dir.file("t.obj") + " -o " + dir.file("t.igs") + " --cloud " + points + " --json " + dir.file("s.json"));
+  ASSERT_EQ(iges.code, 0) << iges.output;
+  EXPECT_NE(iges.output.find("distance to the cloud"), std::string::npos) << iges.output;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("s.json")));
+  // Bad inputs and outputs: one line, documented codes, nothing written.
+  EXPECT_EQ(mcquad("surfaces " + dir.file("none.obj") + " -o " + dir.file("x.step")).code, kExitInput);
+  EXPECT_EQ(mcquad("surfaces " + dir.file("t.obj") + " -o " + dir.file("x.stl")).code, kExitOutput);
+  EXPECT_EQ(mcquad("surfaces " + dir.file("t.obj") + " -o " + dir.file("nodir/x.step")).code, kExitOutput);
+  EXPECT_EQ(mcquad("fit " + points + " " + skeleton + " -o " + dir.file("u.obj") + " --surfaces " + dir.file("u.dxf")).code, kExitOutput);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("u.obj")));
+  std::string triangles = dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  CliRun unsupported = mcquad("surfaces " + triangles + " -o " + dir.file("x.step"));
+  EXPECT_EQ(unsupported.code, kExitUnsupported) << unsupported.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("x.step")));
 }
 
 }  // namespace

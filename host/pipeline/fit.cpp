@@ -11,6 +11,7 @@
 #include "evolution/evolve.h"
 #include "io/mesh_io.h"
 #include "io/point_cloud_io.h"
+#include "pipeline/surfaces.h"
 #include "io/skeleton_io.h"
 #include "mesh/mesh_arrays.h"
 #include "pipeline/prepare.h"
@@ -130,6 +131,8 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
   if (options.measure) {
     report["metrics"] = timer.run("metrics", [&] { return to_json(measure_quality(result.mesh, cloud, cells, &graph)); });
   }
+  if (!options.surfaces.cad_path.empty() || !options.surfaces.control_nets_path.empty())
+    report["surfaces"] = timer.run("surfaces", [&] { return export_surfaces(result.mesh, &cloud, options.surfaces); });
   report["timings_seconds"] = timer.seconds;
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);

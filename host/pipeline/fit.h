@@ -7,6 +7,7 @@
 #include "evolution/evolution_backend.h"
 #include "evolution/evolution_parameters.h"
 #include "mesh/initial_mesh.h"
+#include "pipeline/surfaces.h"
 
 namespace mcquad {
 
@@ -20,6 +21,7 @@ struct FitOptions {
   std::string construction_skeleton; //!< write the skeleton the mesh was built on here (OBJ)
   bool evolve = true;                //!< false: stop after the initial mesh (mcquad init)
   bool measure = true;               //!< compute quality metrics for the report
+  SurfaceOutputs surfaces;           //!< B-spline surfaces to write (none by default)
 };
 
 struct FitResult {
