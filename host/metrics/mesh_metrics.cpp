@@ -162,6 +162,7 @@ QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, co
   if (skeleton) m.inward_faces = long(inward_faces(mesh, *skeleton));
   m.folded_edges = folded_edges(mesh);
   m.intersecting_face_pairs = intersecting_face_pairs(mesh).size();
+  m.quad_shape = measure_quad_shape(mesh);
   return m;
 }
 
@@ -201,7 +202,8 @@ nlohmann::json to_json(const QualityMetrics& m) {
                       {"cloud_to_mesh", summary(m.cloud_to_mesh)},
                       {"error_level", m.error_level},
                       {"intersecting_face_pairs", m.intersecting_face_pairs},
-                      {"folded_edges", m.folded_edges}};
+                      {"folded_edges", m.folded_edges},
+                      {"quad_shape", to_json(m.quad_shape)}};
   if (m.inward_faces >= 0) j["inward_faces"] = m.inward_faces;
   return j;
 }

@@ -7,6 +7,7 @@
 #include "core/point_cloud.h"
 #include "core/quad_mesh.h"
 #include "generate/tube_surface.h"
+#include "metrics/quad_shape.h"
 #include "metrics/surface_distance.h"
 #include "skeleton/skeleton_graph.h"
 
@@ -37,6 +38,7 @@ struct QualityMetrics {
   long inward_faces = -1;          //!< faces whose normal points into the tube (-1: no skeleton)
   size_t folded_edges = 0;         //!< edges between faces folded over each other
   size_t intersecting_face_pairs = 0;
+  QuadShape quad_shape;
 };
 
 //! Measures a mesh against its cloud (and skeleton, when given, for the
