@@ -23,6 +23,9 @@ struct EvolutionParameters {
   //! Robust mode: weight of a tangential relaxation before each step (0 =
   //! off; docs/DESIGN.md has its mixed effect).
   double relaxation = 0.0;
+  //! Robust mode: a cell's distance along a ray is the mean of its samples'
+  //! projections instead of their minimum (docs/DESIGN.md).
+  bool mean_projection = true;
 };
 
 }  // namespace mcquad

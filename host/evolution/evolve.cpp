@@ -21,6 +21,7 @@ device::mcq_step_params make_step_params(const EvolutionParameters& parameters, 
   bool robust = parameters.mode == EvolutionParameters::Mode::kRobust;
   params.fold_guard = robust ? 1u : 0u;
   params.relaxation = robust ? float(parameters.relaxation) : 0.0f;
+  params.mean_projection = robust && parameters.mean_projection ? 1u : 0u;
   return params;
 }
 
