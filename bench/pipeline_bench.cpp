@@ -92,7 +92,7 @@ void BM_ReadPly(benchmark::State& state) {
 
 void BM_CellTree(benchmark::State& state) {
   const PointCloud& cloud = prepared(size_t(state.range(0)), 0).cloud;
-  for (auto _ : state) benchmark::DoNotOptimize(build_cell_tree(cloud, FitOptions().leaf_size));
+  for (auto _ : state) benchmark::DoNotOptimize(build_cell_tree(cloud, cell_leaf_size(0, cloud.size())));
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(cloud.size()));
 }
 

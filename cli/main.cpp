@@ -13,6 +13,7 @@
 #include "io/skeleton_io.h"
 #include "metrics/mesh_metrics.h"
 #include "pipeline/fit.h"
+#include "pipeline/prepare.h"
 #include "pipeline/surfaces.h"
 #include "skeleton/skeleton_graph.h"
 #ifdef MCQUAD_WITH_OPENCL
@@ -86,7 +87,8 @@ struct FitCommand {
     app->add_option("--samples", e.samples, "m: random samples per hit cell")->check(CLI::Range(1u, 1024u))->capture_default_str();
     app->add_option("--epsilon", e.epsilon, "feasibility bound and ray reach (0 = 0.6 x median local radius)")
         ->check(CLI::NonNegativeNumber)->capture_default_str();
-    app->add_option("--leaf-size", options.leaf_size, "maximal points per cell")->check(CLI::Range(size_t(1), size_t(1) << 20))->capture_default_str();
+    app->add_option("--leaf-size", options.leaf_size, "maximal points per cell (0 = 6, growing in proportion above 2 million points)")
+        ->check(CLI::Range(size_t(0), size_t(1) << 20))->capture_default_str();
     app->add_option("--snapshots", options.snapshots_directory, "write the mesh after every iteration into this directory");
     app->add_option("--surfaces", options.surfaces.cad_path, "also write the final mesh as B-spline surfaces (.step, .stp, .iges, .igs)");
     app->add_option("--control-nets", options.surfaces.control_nets_path, "also write the surfaces' control nets (.obj, .off, .ply, .om)");
@@ -166,7 +168,7 @@ int run_metrics(const std::string& mesh_path, const std::string& points_path, co
                 const std::string& surface_path, size_t leaf_size, const std::string& json_path) {
   QuadMesh mesh = read_mesh(mesh_path);
   PointCloud cloud = read_point_cloud(points_path);
-  CellTree cells = build_cell_tree(cloud, leaf_size);
+  CellTree cells = build_cell_tree(cloud, cell_leaf_size(leaf_size, cloud.size()));
   std::unique_ptr<SkeletonGraph> graph;
   if (!skeleton_path.empty())
     graph = std::make_unique<SkeletonGraph>(build_skeleton_graph(read_skeleton(skeleton_path), skeleton_path));
@@ -263,7 +265,7 @@ int main(int argc, char** argv) {
   metrics_app->add_option("MESH", metrics_mesh, "mesh (.obj, .off, .ply, .om)")->required();
   metrics_app->add_option("POINTS", metrics_points, "point cloud")->required();
   metrics_app->add_option("--skeleton", metrics_skeleton, "skeleton, to count faces turned into the tube");
-  metrics_app->add_option("--leaf-size", metrics_leaf, "maximal points per cell (for the error level)")->capture_default_str();
+  metrics_app->add_option("--leaf-size", metrics_leaf, "maximal points per cell, for the error level (0 = as fit chooses)")->capture_default_str();
   metrics_app->add_option("--surface", metrics_surface, "a generated shape's NAME.surface.json: distances to the true surface");
   metrics_app->add_option("--json", metrics_json, "also write the metrics here");
 

@@ -42,9 +42,15 @@ TEST(CellTree, CellsPartitionTheCloudWithTightBoxes) {
     PointCloud cloud = random_cloud(n, 1);
     CellTree cells = build_cell_tree(cloud, 16);
     ASSERT_EQ(cells.point_count(), n);
-    std::vector<int> seen(n, 0);
-    for (uint32_t id : cells.point_ids) ++seen[id];
-    for (int s : seen) EXPECT_EQ(s, 1);
+    // The cells hold every point once: the same multiset as the cloud.
+    auto less = [](const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
+      return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+    };
+    std::vector<Eigen::Vector3f> original = cloud.points, reordered;
+    for (size_t p = 0; p < n; ++p) reordered.emplace_back(&cells.points[3 * p]);
+    std::sort(original.begin(), original.end(), less);
+    std::sort(reordered.begin(), reordered.end(), less);
+    EXPECT_EQ(original, reordered);
     for (size_t c = 0; c < cells.cell_count(); ++c) {
       EXPECT_LE(cells.cell_offsets[c + 1] - cells.cell_offsets[c], 16u);
       EXPECT_GT(cells.cell_offsets[c + 1], cells.cell_offsets[c]);

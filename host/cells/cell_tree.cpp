@@ -77,10 +77,9 @@ class Flattener {
     int cell = int(out_.cell_count());
     for (size_t i = first; i < last; ++i) {
       size_t id = tree_.vAcc[i];
-      out_.point_ids.push_back(uint32_t(id));
       out_.points.insert(out_.points.end(), cloud_.points[id].data(), cloud_.points[id].data() + 3);
     }
-    out_.cell_offsets.push_back(uint32_t(out_.point_ids.size()));
+    out_.cell_offsets.push_back(uint32_t(out_.point_count()));
     out_.cell_centroids.resize(out_.cell_centroids.size() + 3);
     out_.cell_normals.resize(out_.cell_normals.size() + 3);
     fit_cell_plane(out_.points.data() + 3 * out_.cell_offsets[cell], last - first, &out_.cell_centroids[3 * cell],
@@ -113,6 +112,16 @@ class Flattener {
   float padding_;
 };
 
+void count_nodes(const KdNode* node, size_t& nodes, size_t& leaves) {
+  nodes += 1;
+  if (!node->child1 && !node->child2) {
+    leaves += 1;
+    return;
+  }
+  count_nodes(node->child1, nodes, leaves);
+  count_nodes(node->child2, nodes, leaves);
+}
+
 //! Median distance from a point to its nearest neighbour, over a
 //! deterministic subsample of at most about 2000 points.
 double typical_spacing(const PointCloud& cloud, const KdTree& tree) {
@@ -131,7 +140,7 @@ double typical_spacing(const PointCloud& cloud, const KdTree& tree) {
 }  // namespace
 
 size_t CellTree::byte_size() const {
-  return points.size() * 4 + point_ids.size() * 4 + cell_offsets.size() * 4 + cell_centroids.size() * 4 +
+  return points.size() * 4 + cell_offsets.size() * 4 + cell_centroids.size() * 4 +
          cell_normals.size() * 4 + node_bounds.size() * 4 + node_children.size() * 4;
 }
 
@@ -141,9 +150,17 @@ CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size, bool pad_box
   CloudAdaptor adaptor{cloud};
   KdTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(std::max<size_t>(leaf_size, 1)));
   tree.buildIndex();
+  // Exact sizes up front: grown by doubling, the arrays of a 10^7-point
+  // cloud would hold up to twice their size, and copy it at every step.
+  size_t nodes = 0, leaves = 0;
+  count_nodes(tree.root_node, nodes, leaves);
   CellTree cells;
   cells.points.reserve(3 * cloud.size());
-  cells.point_ids.reserve(cloud.size());
+  cells.cell_offsets.reserve(leaves + 1);
+  cells.cell_centroids.reserve(3 * leaves);
+  cells.cell_normals.reserve(3 * leaves);
+  cells.node_bounds.reserve(6 * nodes);
+  cells.node_children.reserve(2 * nodes);
   cells.cell_offsets.push_back(0);
   Flattener(cloud, tree, cells, pad_boxes ? float(typical_spacing(cloud, tree)) : 0.0f).flatten(tree.root_node, 0);
   if (cells.depth > MCQ_MAX_TREE_DEPTH)

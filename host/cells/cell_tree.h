@@ -13,7 +13,6 @@ namespace mcquad {
 //! tight boxes for ray traversal and nearest-point queries.
 struct CellTree {
   std::vector<float> points;              //!< 3 per point, reordered by cell
-  std::vector<uint32_t> point_ids;        //!< original index of each reordered point
   std::vector<uint32_t> cell_offsets;     //!< cell c holds points [offsets[c], offsets[c+1])
   std::vector<float> cell_centroids;      //!< 3 per cell: the paper's g_l
   std::vector<float> cell_normals;        //!< 3 per cell: the paper's t_l (least-squares plane normal)
@@ -23,7 +22,7 @@ struct CellTree {
 
   size_t cell_count() const { return cell_offsets.empty() ? 0 : cell_offsets.size() - 1; }
   size_t node_count() const { return node_children.size() / 2; }
-  size_t point_count() const { return point_ids.size(); }
+  size_t point_count() const { return points.size() / 3; }
   size_t byte_size() const;
 };
 

@@ -148,7 +148,7 @@ QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, co
                                const SkeletonGraph* skeleton) {
   QualityMetrics m;
   m.statistics = mesh_statistics(mesh);
-  m.mesh_to_cloud = summarize_distances(mesh_to_cloud_distances(mesh, cloud));
+  m.mesh_to_cloud = summarize_distances(mesh_to_cloud_distances(mesh, cells));
   // A million points pin the percentiles down; more only cost time.
   m.cloud_to_mesh = summarize_distances(cloud_to_mesh_distances(mesh, cloud, 1000000));
   double sum = 0;

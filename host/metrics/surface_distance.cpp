@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/point_index.h"
+#include "evolution/shared_math.h"
 #include "metrics/face_intersections.h"
 
 namespace mcquad {
@@ -21,14 +22,17 @@ DistanceSummary summarize_distances(std::vector<double> distances) {
   return s;
 }
 
-std::vector<double> mesh_to_cloud_distances(const QuadMesh& mesh, const PointCloud& cloud) {
-  PointIndex<float> index(cloud.points);
+std::vector<double> mesh_to_cloud_distances(const QuadMesh& mesh, const CellTree& cells) {
   std::vector<double> out(mesh.n_vertices());
   // Host-side measurements use every core (the serial backend stays serial).
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < long(mesh.n_vertices()); ++i) {
     const auto& p = mesh.point(QuadMesh::VertexHandle(int(i)));
-    out[i] = std::sqrt(double(index.nearest(Eigen::Vector3f(float(p[0]), float(p[1]), float(p[2]))).second));
+    float distance2 = 0;
+    device::mcq_nearest_point_cell(cells.node_bounds.data(), cells.node_children.data(), cells.cell_offsets.data(),
+                                   cells.points.data(), device::mcq_make_vec3(float(p[0]), float(p[1]), float(p[2])),
+                                   &distance2);
+    out[size_t(i)] = std::sqrt(double(distance2));
   }
   return out;
 }

@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "cells/cell_tree.h"
 #include "core/point_cloud.h"
 #include "core/quad_mesh.h"
 
@@ -14,8 +15,9 @@ struct DistanceSummary {
 //! Summary of a list of distances (mean, 95th percentile, max).
 DistanceSummary summarize_distances(std::vector<double> distances);
 
-//! Distance of every mesh vertex to its nearest cloud point.
-std::vector<double> mesh_to_cloud_distances(const QuadMesh& mesh, const PointCloud& cloud);
+//! Distance of every mesh vertex to its nearest cloud point, searched in the
+//! cells (which hold every point), so no second index of the cloud is built.
+std::vector<double> mesh_to_cloud_distances(const QuadMesh& mesh, const CellTree& cells);
 
 //! Distance of every cloud point to the mesh surface (quads split into two
 //! triangles; the exact point-triangle distance over the triangles whose

@@ -1,6 +1,10 @@
 #include "pipeline/fit.h"
 
+#include <malloc.h>
 #include <sys/resource.h>
+#include <unistd.h>
+
+#include <fstream>
 
 #include <algorithm>
 #include <chrono>
@@ -22,6 +26,20 @@
 namespace mcquad {
 namespace {
 
+double peak_resident_megabytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
+//! Resident memory now, from /proc/self/statm (0 where there is none).
+double current_resident_megabytes() {
+  std::ifstream statm("/proc/self/statm");
+  size_t pages = 0, resident = 0;
+  statm >> pages >> resident;
+  return double(resident) * double(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
+}
+
 //! Times named stages into the report.
 class StageTimer {
  public:
@@ -32,14 +50,22 @@ class StageTimer {
       StageTimer* timer;
       std::string stage;
       std::chrono::steady_clock::time_point start;
-      ~Record() { timer->seconds[stage] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); }
+      ~Record() {
+        timer->seconds[stage] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        timer->peak_megabytes[stage] = peak_resident_megabytes();
+        timer->resident_megabytes[stage] = current_resident_megabytes();
+      }
     } record{this, stage, start};
     return work();
   }
   nlohmann::json seconds = nlohmann::json::object();
+  //! Peak resident memory of the process when each stage ended: the first
+  //! stage at the final peak is the one that set it.
+  nlohmann::json peak_megabytes = nlohmann::json::object();
+  nlohmann::json resident_megabytes = nlohmann::json::object();
 };
 
-nlohmann::json parameters_json(const FitOptions& o, double epsilon, double median_radius) {
+nlohmann::json parameters_json(const FitOptions& o, double epsilon, double median_radius, size_t leaf_size) {
   const auto& e = o.evolution;
   return {{"mode", e.mode == EvolutionParameters::Mode::kPaper ? "paper" : "robust"},
           {"relaxation", e.relaxation},
@@ -52,7 +78,8 @@ nlohmann::json parameters_json(const FitOptions& o, double epsilon, double media
           {"iterations", e.iterations},
           {"tolerance", e.tolerance},
           {"seed", e.seed},
-          {"leaf_size", o.leaf_size},
+          {"leaf_size", leaf_size},
+          {"leaf_size_automatic", o.leaf_size == 0},
           {"start_fraction", o.initial.start_fraction},
           {"resolution", o.initial.resolution},
           {"target_vertices", o.initial.target_vertices},
@@ -69,12 +96,14 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
   timer.run("sort_points", [&] { sort_spatially(cloud); return 0; });
   SkeletonData skeleton_data = timer.run("read_skeleton", [&] { return read_skeleton(skeleton_path); });
   SkeletonGraph graph = build_skeleton_graph(skeleton_data, skeleton_path);
-  PointIndex<float> cloud_index = timer.run("point_index", [&] { return PointIndex<float>(cloud.points); });
-  BoneAssignment bones = timer.run("radius", [&] { return assign_points_to_bones(graph, cloud, skeleton_path, &cloud_index); });
+  // The index serves the radii and the initial mesh, then goes before the cells are built.
+  auto cloud_index = timer.run("point_index", [&] { return std::make_unique<PointIndex<float>>(cloud.points); });
+  BoneAssignment bones = timer.run("radius", [&] { return assign_points_to_bones(graph, cloud, skeleton_path, cloud_index.get()); });
   double median_radius = median_bone_radius(bones);
   bones.release_per_point();  // only the radii are needed from here on
 
-  InitialMesh initial = timer.run("initial_mesh", [&] { return build_initial_mesh(graph, bones, cloud, options.initial, skeleton_path, &cloud_index); });
+  InitialMesh initial = timer.run("initial_mesh", [&] { return build_initial_mesh(graph, bones, cloud, options.initial, skeleton_path, cloud_index.get()); });
+  cloud_index.reset();
   if (!options.construction_skeleton.empty()) {
     SkeletonData built{initial.skeleton.graph.positions, initial.skeleton.graph.edges};
     write_skeleton_obj(options.construction_skeleton, built);
@@ -83,7 +112,14 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
   result.mesh = std::move(initial.mesh);
   // The initial mesh alone (mcquad init) needs no cells.
   CellTree cells;
-  if (options.evolve || options.measure) cells = timer.run("cells", [&] { return build_cell_tree(cloud, options.leaf_size); });
+  const size_t leaf_size = cell_leaf_size(options.leaf_size, cloud.size());
+  if (options.evolve || options.measure) {
+    cells = timer.run("cells", [&] { return build_cell_tree(cloud, leaf_size); });
+    // nanoflann allocates its tree nodes in small pooled blocks that glibc
+    // keeps after they are freed (about 100 MB at 10^7 points); give them
+    // back before the device and the metrics add their own.
+    malloc_trim(0);
+  }
 
   EvolutionParameters parameters = options.evolution;
   if (parameters.epsilon <= 0) parameters.epsilon = automatic_epsilon(median_radius);
@@ -91,7 +127,7 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
   report["inputs"] = {{"points", points_path}, {"skeleton", skeleton_path}, {"point_count", cloud.size()},
                       {"skeleton_nodes", graph.node_count()}, {"skeleton_bones", graph.edges.size()},
                       {"skeleton_components", graph.component_count}};
-  report["parameters"] = parameters_json(options, parameters.epsilon, median_radius);
+  report["parameters"] = parameters_json(options, parameters.epsilon, median_radius, leaf_size);
   report["initial_mesh"] = {{"open_ends", initial.open_ends}, {"refinement_levels", initial.refinement_levels},
                             {"statistics", to_json(mesh_statistics(result.mesh))}};
   if (cells.cell_count() > 0)
@@ -134,9 +170,9 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
   if (!options.surfaces.cad_path.empty() || !options.surfaces.control_nets_path.empty())
     report["surfaces"] = timer.run("surfaces", [&] { return export_surfaces(result.mesh, &cloud, options.surfaces); });
   report["timings_seconds"] = timer.seconds;
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  report["peak_resident_megabytes"] = double(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+  report["peak_resident_megabytes_after_stage"] = timer.peak_megabytes;
+  report["resident_megabytes_after_stage"] = timer.resident_megabytes;
+  report["peak_resident_megabytes"] = peak_resident_megabytes();
   report["version"] = MCQUAD_VERSION;
   result.report = std::move(report);
   return result;

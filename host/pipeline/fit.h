@@ -14,7 +14,7 @@ namespace mcquad {
 struct FitOptions {
   EvolutionParameters evolution;
   InitialMeshOptions initial;
-  size_t leaf_size = 6;              //!< at most this many points per cell (docs/DESIGN.md)
+  size_t leaf_size = 0;              //!< at most this many points per cell; 0: automatic (cell_leaf_size)
   BackendKind backend = BackendKind::kAuto;
   std::string device;                //!< OpenCL device by index or name
   std::string snapshots_directory;   //!< write the mesh after every iteration here

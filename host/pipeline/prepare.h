@@ -20,6 +20,14 @@ double median_bone_radius(const BoneAssignment& bones);
 //! of the opposite wall (docs/DESIGN.md).
 double automatic_epsilon(double median_radius);
 
+//! Points per cell: `requested`, or with 0 the automatic size: 6 points up
+//! to two million points, then in proportion to the cloud, so that cells
+//! keep the physical size they have at two million points. Six points buy
+//! accuracy on clouds like the paper's (docs/DESIGN.md); on denser clouds
+//! the cells are smaller than the mesh can resolve anyway, and the cell
+//! arrays would outgrow the cloud itself (docs/PERFORMANCE.md).
+size_t cell_leaf_size(size_t requested, size_t points);
+
 //! Everything the evolution starts from, built from a cloud and its
 //! skeleton graph: radii, the initial mesh, the cells and the flat arrays.
 //! The pipeline runs the same stages one by one with timings (pipeline/fit.cpp);
@@ -32,6 +40,7 @@ struct EvolutionSetup {
   MeshArrays arrays;
 };
 
+//! `leaf_size` as in cell_leaf_size (0: automatic).
 EvolutionSetup prepare_evolution(const SkeletonGraph& graph, const PointCloud& cloud, const InitialMeshOptions& options,
                                  size_t leaf_size, const std::string& source);
 

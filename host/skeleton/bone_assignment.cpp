@@ -88,21 +88,33 @@ BoneAssignment assign_points_to_bones(const SkeletonGraph& graph, const PointClo
     result.distance[i] = float(best_d);
   }
 
-  std::vector<std::vector<float>> interior(bone_count), all(bone_count);
+  // A bone's radius: the median distance of its interior points (those that
+  // project inside it), or of all its points when fewer than 8 are
+  // interior. Counted first so each bone's list is allocated once, exactly:
+  // at 10^7 points grown lists would double the memory of this stage.
+  auto interior = [&](size_t i) { return result.parameter[i] > 0.0f && result.parameter[i] < 1.0f; };
+  std::vector<size_t> interior_count(bone_count, 0), all_count(bone_count, 0);
   for (size_t i = 0; i < n; ++i) {
-    all[result.bone[i]].push_back(result.distance[i]);
-    if (result.parameter[i] > 0.0f && result.parameter[i] < 1.0f) interior[result.bone[i]].push_back(result.distance[i]);
+    all_count[size_t(result.bone[i])] += 1;
+    interior_count[size_t(result.bone[i])] += interior(i);
   }
-  result.bone_radius.resize(bone_count);
+  std::vector<std::vector<float>> distances(bone_count);
   for (size_t b = 0; b < bone_count; ++b) {
-    if (all[b].empty()) {
+    if (all_count[b] == 0) {
       std::ostringstream s;
       s << source << ": bone between nodes at (" << graph.positions[graph.edges[b][0]].transpose() << ") and ("
         << graph.positions[graph.edges[b][1]].transpose() << ") has no cloud points near it: the skeleton does not match the cloud";
       throw InputError(s.str());
     }
-    result.bone_radius[b] = interior[b].size() >= 8 ? median(interior[b]) : median(all[b]);
+    distances[b].reserve(interior_count[b] >= 8 ? interior_count[b] : all_count[b]);
   }
+  for (size_t i = 0; i < n; ++i) {
+    size_t b = size_t(result.bone[i]);
+    if (interior_count[b] < 8 || interior(i)) distances[b].push_back(result.distance[i]);
+  }
+  result.bone_radius.resize(bone_count);
+  for (size_t b = 0; b < bone_count; ++b) result.bone_radius[b] = median(distances[b]);
+  std::vector<std::vector<float>>().swap(distances);
 
   result.node_radius = node_radii(graph, result.bone_radius);
 
