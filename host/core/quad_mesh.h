@@ -1,6 +1,8 @@
 #pragma once
 
+#include <Eigen/Geometry>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <vector>
 
 namespace mcquad {
 
@@ -15,5 +17,24 @@ struct QuadMeshTraits : public OpenMesh::DefaultTraits {
 
 //! The host-side mesh used for topology work, refinement and writing.
 using QuadMesh = OpenMesh::PolyMesh_ArrayKernelT<QuadMeshTraits>;
+
+//! A vertex's position as an Eigen vector.
+inline Eigen::Vector3d point_of(const QuadMesh& mesh, QuadMesh::VertexHandle v) {
+  const auto& p = mesh.point(v);
+  return {p[0], p[1], p[2]};
+}
+
+//! A face's corners in face order.
+inline std::vector<Eigen::Vector3d> face_corners(const QuadMesh& mesh, QuadMesh::FaceHandle f) {
+  std::vector<Eigen::Vector3d> corners;
+  for (auto v : mesh.fv_range(f)) corners.push_back(point_of(mesh, v));
+  return corners;
+}
+
+//! Twice the vector area of a quad: the cross product of its diagonals,
+//! exact for planar quads and well defined for bent ones.
+inline Eigen::Vector3d quad_vector_area(const std::vector<Eigen::Vector3d>& c) {
+  return (c[2] - c[0]).cross(c[3] - c[1]);
+}
 
 }  // namespace mcquad

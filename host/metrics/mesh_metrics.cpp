@@ -99,14 +99,9 @@ size_t inward_faces(const QuadMesh& mesh, const SkeletonGraph& skeleton) {
 
 namespace {
 
-Eigen::Vector3d point_of(const QuadMesh& mesh, QuadMesh::VertexHandle v) {
-  const auto& p = mesh.point(v);
-  return Eigen::Vector3d(p[0], p[1], p[2]);
-}
 
 Eigen::Vector3d face_normal(const QuadMesh& mesh, QuadMesh::FaceHandle f) {
-  std::vector<Eigen::Vector3d> corners;
-  for (auto v : mesh.fv_range(f)) corners.push_back(point_of(mesh, v));
+  std::vector<Eigen::Vector3d> corners = face_corners(mesh, f);
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
   for (size_t k = 0; k < corners.size(); ++k) normal += corners[k].cross(corners[(k + 1) % corners.size()]);
   return normal.normalized();

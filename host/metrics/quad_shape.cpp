@@ -23,13 +23,9 @@ QuadShape measure_quad_shape(const QuadMesh& mesh) {
   std::vector<double> jacobians, ratios;
   double angle_min = 180, angle_max = 0;
   for (auto f : mesh.faces()) {
-    std::vector<Eigen::Vector3d> c;
-    for (auto v : mesh.fv_range(f)) {
-      const auto& p = mesh.point(v);
-      c.emplace_back(p[0], p[1], p[2]);
-    }
+    std::vector<Eigen::Vector3d> c = face_corners(mesh, f);
     if (c.size() != 4) continue;
-    Eigen::Vector3d normal = (c[2] - c[0]).cross(c[3] - c[1]);
+    Eigen::Vector3d normal = quad_vector_area(c);
     if (normal.norm() > 0) normal.normalize();
     double jacobian = 1, shortest = INFINITY, longest = 0;
     for (size_t k = 0; k < 4; ++k) {

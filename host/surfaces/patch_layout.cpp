@@ -233,19 +233,11 @@ std::array<Eigen::Vector2d, 4> in_face_order(const QuadMesh& mesh, QuadMesh::Fac
 
 namespace {
 
-Eigen::Vector3d position(const QuadMesh& mesh, QuadMesh::VertexHandle v) {
-  const auto& x = mesh.point(v);
-  return {x[0], x[1], x[2]};
-}
 
 //! Unit normal of the mesh at v: the sum of its faces' vector areas.
 Eigen::Vector3d vertex_normal(const QuadMesh& mesh, QuadMesh::VertexHandle v) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (auto f : mesh.vf_range(v)) {
-    std::vector<Eigen::Vector3d> c;
-    for (auto corner : mesh.fv_range(f)) c.push_back(position(mesh, corner));
-    sum += (c[2] - c[0]).cross(c[3] - c[1]);
-  }
+  for (auto f : mesh.vf_range(v)) sum += quad_vector_area(face_corners(mesh, f));
   return sum.normalized();
 }
 
@@ -253,7 +245,7 @@ Eigen::Vector3d vertex_normal(const QuadMesh& mesh, QuadMesh::VertexHandle v) {
 
 Eigen::Vector3d grid_tangent(const QuadMesh& mesh, QuadMesh::VertexHandle p, QuadMesh::VertexHandle q) {
   auto h = mesh.find_halfedge(p, q);
-  Eigen::Vector3d edge = position(mesh, q) - position(mesh, p);
+  Eigen::Vector3d edge = point_of(mesh, q) - point_of(mesh, p);
   if (!h.is_valid()) return edge;
   if (!mesh.is_boundary(p)) {
     // The first Fourier harmonic of the edge ring (the tangent rule of
@@ -268,7 +260,7 @@ Eigen::Vector3d grid_tangent(const QuadMesh& mesh, QuadMesh::VertexHandle p, Qua
     size_t k = 0;
     for (auto out = h;;) {
       if (out == h) k = ring.size();
-      ring.push_back(position(mesh, mesh.to_vertex_handle(out)) - position(mesh, p));
+      ring.push_back(point_of(mesh, mesh.to_vertex_handle(out)) - point_of(mesh, p));
       out = mesh.cw_rotated_halfedge_handle(out);
       if (out == h) break;
     }
@@ -284,7 +276,7 @@ Eigen::Vector3d grid_tangent(const QuadMesh& mesh, QuadMesh::VertexHandle p, Qua
     // Along a smooth rim: central difference with the rim's other neighbour.
     for (auto r : mesh.vv_range(p))
       if (r != q && mesh.is_boundary(mesh.edge_handle(mesh.find_halfedge(p, r))))
-        return 0.5 * (position(mesh, q) - position(mesh, r));
+        return 0.5 * (point_of(mesh, q) - point_of(mesh, r));
   }
   // Elsewhere on the boundary: the edge laid into the tangent plane, the
   // same for every region that meets at p.

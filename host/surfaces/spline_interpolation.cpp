@@ -91,10 +91,7 @@ class CurveInterpolation {
   Eigen::SparseLU<Eigen::SparseMatrix<double>> solver_;
 };
 
-Eigen::RowVector3d point_of(const QuadMesh& mesh, int v) {
-  const auto& p = mesh.point(QuadMesh::VertexHandle(v));
-  return Eigen::RowVector3d(p[0], p[1], p[2]);
-}
+Eigen::RowVector3d row_of(const QuadMesh& mesh, int v) { return point_of(mesh, QuadMesh::VertexHandle(v)).transpose(); }
 
 Eigen::RowVector3d tangent(const QuadMesh& mesh, int from, int toward) {
   return grid_tangent(mesh, QuadMesh::VertexHandle(from), QuadMesh::VertexHandle(toward)).transpose();
@@ -114,7 +111,7 @@ BSplineSurface interpolate_region(const QuadMesh& mesh, const PatchRegion& regio
   std::vector<Rows> columns(static_cast<size_t>(cu));
   for (int i = 0; i < cu; ++i) {
     Rows data(rv, 3);
-    for (int j = 0; j < rv; ++j) data.row(j) = point_of(mesh, region.vertex(i, j));
+    for (int j = 0; j < rv; ++j) data.row(j) = row_of(mesh, region.vertex(i, j));
     Eigen::RowVector3d start = zero, end = zero;
     if (!region.periodic_v) {
       start = tangent(mesh, region.vertex(i, 0), region.vertex(i, 1));

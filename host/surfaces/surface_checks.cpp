@@ -11,10 +11,6 @@
 namespace mcquad {
 namespace {
 
-Eigen::Vector3d point_of(const QuadMesh& mesh, QuadMesh::VertexHandle v) {
-  const auto& p = mesh.point(v);
-  return {p[0], p[1], p[2]};
-}
 
 //! A vertex's parameters in the surface of a face it belongs to.
 Eigen::Vector2d parameter_in_face(const QuadMesh& mesh, const PatchLayout& layout, QuadMesh::FaceHandle f,
@@ -67,16 +63,11 @@ double angle_degrees(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / M_PI;
 }
 
-Eigen::Vector3d face_area_vector(const QuadMesh& mesh, QuadMesh::FaceHandle f) {
-  std::vector<Eigen::Vector3d> c;
-  for (auto v : mesh.fv_range(f)) c.push_back(point_of(mesh, v));
-  return (c[2] - c[0]).cross(c[3] - c[1]);
-}
 
 //! Per vertex, the largest dihedral angle of the quad mesh at its edges.
 std::vector<double> mesh_creases(const QuadMesh& mesh) {
   std::vector<Eigen::Vector3d> normals(mesh.n_faces());
-  for (auto f : mesh.faces()) normals[size_t(f.idx())] = face_area_vector(mesh, f);
+  for (auto f : mesh.faces()) normals[size_t(f.idx())] = quad_vector_area(face_corners(mesh, f));
   std::vector<double> crease(mesh.n_vertices(), 0.0);
   for (auto e : mesh.edges()) {
     if (mesh.is_boundary(e)) continue;
