@@ -6,17 +6,20 @@
 /* One Jacobi step: every vertex reads the old positions and normals and
  * writes its new position; the normals are updated by update_normals after. */
 __kernel void evolve_vertices(__global const float* positions, __global const float* normals,
+                              __global const float* initial_positions, __global const float* initial_normals,
                               __global float* new_positions,
                               __global const uint* faces, __global const uint* vertex_face_offsets,
-                              __global const uint* vertex_faces, __global const float* node_bounds,
-                              __global const int* node_children, __global const uint* cell_offsets,
-                              __global const float* points, const mcq_step_params params, const uint vertex_count) {
+                              __global const uint* vertex_faces, __global const uint* boundary,
+                              __global const float* node_bounds, __global const int* node_children,
+                              __global const uint* cell_offsets, __global const float* points,
+                              const mcq_step_params params, const uint vertex_count) {
   uint v = get_global_id(0);
   if (v >= vertex_count) return;
   uint feasible;
   mcq_store3(new_positions, v,
-             mcq_evolve_vertex(positions, normals, faces, vertex_face_offsets, vertex_faces, node_bounds, node_children,
-                               cell_offsets, points, v, params, &feasible));
+             mcq_evolve_vertex(positions, normals, initial_positions, initial_normals, faces, vertex_face_offsets,
+                               vertex_faces, boundary, node_bounds, node_children, cell_offsets, points, v, params,
+                               &feasible));
 }
 
 __kernel void relax_tangentially(__global const float* positions, __global const float* normals,

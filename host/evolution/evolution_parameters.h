@@ -26,6 +26,8 @@ struct EvolutionParameters {
   //! Robust mode: a cell's distance along a ray is the mean of its samples'
   //! projections instead of their minimum (docs/DESIGN.md).
   bool mean_projection = true;
+  //! Robust mode: vertices in holes of the scan take their neighbours' offset.
+  bool fill_holes = true;
 };
 
 }  // namespace mcquad

@@ -22,6 +22,7 @@ device::mcq_step_params make_step_params(const EvolutionParameters& parameters, 
   params.fold_guard = robust ? 1u : 0u;
   params.relaxation = robust ? float(parameters.relaxation) : 0.0f;
   params.mean_projection = robust && parameters.mean_projection ? 1u : 0u;
+  params.fill_holes = robust && parameters.fill_holes ? 1u : 0u;
   return params;
 }
 

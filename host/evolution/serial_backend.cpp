@@ -9,6 +9,7 @@ void SerialBackend::load(const CellTree& cells, const MeshArrays& mesh) {
   next_positions_.resize(positions_.size());
   normals_.resize(positions_.size());
   update_normals();
+  initial_normals_ = normals_;
 }
 
 void SerialBackend::update_normals() {
@@ -33,9 +34,10 @@ void SerialBackend::step(const device::mcq_step_params& params) {
   for (uint32_t v = 0; v < mesh_.vertex_count(); ++v) {
     uint32_t feasible;
     device::mcq_store3(next_positions_.data(), v,
-                       device::mcq_evolve_vertex(positions_.data(), normals_.data(), mesh_.faces.data(),
+                       device::mcq_evolve_vertex(positions_.data(), normals_.data(), mesh_.positions.data(),
+                                                 initial_normals_.data(), mesh_.faces.data(),
                                                  mesh_.vertex_face_offsets.data(), mesh_.vertex_faces.data(),
-                                                 cells_->node_bounds.data(), cells_->node_children.data(),
+                                                 mesh_.boundary.data(), cells_->node_bounds.data(), cells_->node_children.data(),
                                                  cells_->cell_offsets.data(), cells_->points.data(), v, params,
                                                  &feasible));
   }

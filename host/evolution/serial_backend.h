@@ -23,6 +23,7 @@ class SerialBackend : public EvolutionBackend {
   const CellTree* cells_ = nullptr;
   MeshArrays mesh_;
   std::vector<float> positions_, next_positions_, normals_;
+  std::vector<float> initial_normals_;  //!< at load; the initial positions stay in mesh_
 };
 
 }  // namespace mcquad

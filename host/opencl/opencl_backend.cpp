@@ -61,6 +61,8 @@ void OpenCLBackend::load(const CellTree& cells, const MeshArrays& mesh) {
     vertex_faces_ = upload(mesh.vertex_faces);
     boundary_ = upload(mesh.boundary);
     positions_ = upload(mesh.positions, CL_MEM_READ_WRITE);
+    initial_positions_ = upload(mesh.positions);
+    initial_normals_ = cl::Buffer(context_, CL_MEM_READ_WRITE, std::max<size_t>(mesh.positions.size(), 1) * 4);
     next_positions_ = cl::Buffer(context_, CL_MEM_READ_WRITE, std::max<size_t>(mesh.positions.size(), 1) * 4);
     normals_ = cl::Buffer(context_, CL_MEM_READ_WRITE, std::max<size_t>(mesh.positions.size(), 1) * 4);
     errors_ = cl::Buffer(context_, CL_MEM_READ_WRITE, std::max<size_t>(vertex_count_, 1) * 4);
@@ -71,6 +73,7 @@ void OpenCLBackend::load(const CellTree& cells, const MeshArrays& mesh) {
     partial_sums_ = cl::Buffer(context_, CL_MEM_READ_WRITE, reduce_groups_ * 4);
     total_ = cl::Buffer(context_, CL_MEM_READ_WRITE, 4);
     run_normals();
+    if (!mesh.positions.empty()) queue_.enqueueCopyBuffer(normals_, initial_normals_, 0, 0, mesh.positions.size() * 4);
     queue_.finish();
   } catch (const cl::Error& e) {
     fail("uploading the cells and the mesh", e);
@@ -91,8 +94,9 @@ void OpenCLBackend::step(const device::mcq_step_params& params) {
       std::swap(positions_, next_positions_);
       run_normals();
     }
-    set_kernel_args(evolve_kernel_, positions_, normals_, next_positions_, faces_, vertex_face_offsets_,
-                    vertex_faces_, node_bounds_, node_children_, cell_offsets_, points_, params, vertex_count_);
+    set_kernel_args(evolve_kernel_, positions_, normals_, initial_positions_, initial_normals_, next_positions_, faces_,
+                    vertex_face_offsets_, vertex_faces_, boundary_, node_bounds_, node_children_, cell_offsets_, points_,
+                    params, vertex_count_);
     queue_.enqueueNDRangeKernel(evolve_kernel_, cl::NullRange, global_range(vertex_count_, kGroupSize), cl::NDRange(kGroupSize));
     std::swap(positions_, next_positions_);
     run_normals();

@@ -41,6 +41,7 @@ class OpenCLBackend : public EvolutionBackend {
   cl::Buffer node_bounds_, node_children_, cell_offsets_, points_, cell_centroids_, cell_normals_;
   cl::Buffer faces_, vertex_face_offsets_, vertex_faces_, boundary_;
   cl::Buffer positions_, next_positions_, normals_, errors_, partial_sums_, total_;
+  cl::Buffer initial_positions_, initial_normals_;  //!< where the evolution started, for hole filling
   uint32_t vertex_count_ = 0;
   size_t reduce_groups_ = 0, reduce_group_size_ = 0;
 };

@@ -17,6 +17,7 @@ typedef struct {
   mcq_uint fold_guard;  /* 1: shorten steps that would fold a face (robust mode), 0: the paper's step */
   float relaxation;     /* weight of the tangential relaxation before the step; 0: none (the paper) */
   mcq_uint mean_projection; /* 1: a cell's d is the mean of its samples' projections; 0: their minimum (the paper) */
+  mcq_uint fill_holes;  /* 1: a vertex no ray finds a feasible cell for takes its neighbours' offset */
 } mcq_step_params;
 
 /* Orthonormal frame (i', j', k' = n) of the paper's cones. The helper axis is
@@ -185,17 +186,55 @@ MCQ_FN float mcq_fold_safe_fraction(const MCQ_GLOBAL float* positions, const MCQ
   return 0.0f;
 }
 
+/* How far vertex v has moved along its initial normal since the start. */
+MCQ_FN float mcq_offset(const MCQ_GLOBAL float* positions, const MCQ_GLOBAL float* initial_positions,
+                        const MCQ_GLOBAL float* initial_normals, mcq_uint v) {
+  return mcq_dot(mcq_sub(mcq_load3(positions, v), mcq_load3(initial_positions, v)), mcq_load3(initial_normals, v));
+}
+
+/* Robust mode's hole filling: the mean offset of the vertex's edge
+ * neighbours (each counted twice, once per face on either side of the edge)
+ * laid along its own initial normal from its initial position. Where the
+ * scan has a hole, no ray of its vertices finds a feasible cell; instead of
+ * staying where the initial mesh put them (a dent of about 0.3 r), they take
+ * the offset the surrounding vertices found. Over the iterations the offsets
+ * diffuse across the hole, so the mesh spans it at the height of its rim,
+ * following the initial mesh's shape rather than flattening it the way an
+ * average of positions would. */
+MCQ_FN mcq_vec3 mcq_hole_position(const MCQ_GLOBAL float* positions, const MCQ_GLOBAL float* initial_positions,
+                                  const MCQ_GLOBAL float* initial_normals, const MCQ_GLOBAL mcq_uint* faces,
+                                  const MCQ_GLOBAL mcq_uint* vertex_face_offsets,
+                                  const MCQ_GLOBAL mcq_uint* vertex_faces, mcq_uint vertex) {
+  float sum = 0.0f, count = 0.0f;
+  for (mcq_uint k = vertex_face_offsets[vertex]; k < vertex_face_offsets[vertex + 1]; ++k) {
+    mcq_uint f = vertex_faces[k];
+    for (mcq_uint c = 0; c < 4u; ++c) {
+      if (faces[4 * f + c] != vertex) continue;
+      sum += mcq_offset(positions, initial_positions, initial_normals, faces[4 * f + (c + 1u) % 4u]);
+      sum += mcq_offset(positions, initial_positions, initial_normals, faces[4 * f + (c + 3u) % 4u]);
+      count += 2.0f;
+    }
+  }
+  if (count == 0.0f) return mcq_load3(positions, vertex);
+  return mcq_add(mcq_load3(initial_positions, vertex), mcq_scale(mcq_load3(initial_normals, vertex), sum / count));
+}
+
 /* One vertex's new position: the paper's move along the normal, shortened
- * by the fold guard when the step asks for it. */
+ * by the fold guard when the step asks for it; in a hole (no feasible ray,
+ * params.fill_holes, not on an open rim) the neighbours' offset instead. */
 MCQ_FN mcq_vec3 mcq_evolve_vertex(const MCQ_GLOBAL float* positions, const MCQ_GLOBAL float* normals,
+                                  const MCQ_GLOBAL float* initial_positions, const MCQ_GLOBAL float* initial_normals,
                                   const MCQ_GLOBAL mcq_uint* faces, const MCQ_GLOBAL mcq_uint* vertex_face_offsets,
-                                  const MCQ_GLOBAL mcq_uint* vertex_faces, const MCQ_GLOBAL float* node_bounds,
-                                  const MCQ_GLOBAL int* node_children, const MCQ_GLOBAL mcq_uint* cell_offsets,
-                                  const MCQ_GLOBAL float* points, mcq_uint vertex, mcq_step_params params,
-                                  mcq_uint* feasible) {
+                                  const MCQ_GLOBAL mcq_uint* vertex_faces, const MCQ_GLOBAL mcq_uint* boundary,
+                                  const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
+                                  const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points,
+                                  mcq_uint vertex, mcq_step_params params, mcq_uint* feasible) {
   mcq_vec3 q = mcq_load3(positions, vertex);
   mcq_vec3 n = mcq_load3(normals, vertex);
   float delta = mcq_vertex_displacement(node_bounds, node_children, cell_offsets, points, q, n, vertex, params, feasible);
+  if (*feasible == 0u && params.fill_holes && !boundary[vertex])
+    return mcq_hole_position(positions, initial_positions, initial_normals, faces, vertex_face_offsets, vertex_faces,
+                             vertex);
   mcq_vec3 target = mcq_add(q, mcq_scale(n, delta));
   if (params.fold_guard && delta != 0.0f)
     target = mcq_add(q, mcq_scale(n, delta * mcq_fold_safe_fraction(positions, faces, vertex_face_offsets, vertex_faces,
