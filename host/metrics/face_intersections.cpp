@@ -58,61 +58,97 @@ double point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& 
   return (p - (a + ab * vb * denom + ac * vc * denom)).norm();
 }
 
-std::vector<std::pair<int, int>> intersecting_face_pairs(const QuadMesh& mesh) {
-  struct Triangle {
-    Eigen::Vector3d p[3];
-    int face;
-    std::array<int, 3> v;
-  };
-  std::vector<Triangle> triangles;
-  double longest = 0;
+MeshTriangles triangulate(const QuadMesh& mesh) {
+  MeshTriangles triangles;
+  triangles.positions.reserve(mesh.n_vertices());
+  for (auto v : mesh.vertices()) triangles.positions.push_back(point_of(mesh, v));
+  triangles.corners.reserve(2 * mesh.n_faces());
+  triangles.face.reserve(2 * mesh.n_faces());
   for (auto f : mesh.faces()) {
-    std::vector<QuadMesh::VertexHandle> vs;
-    for (auto v : mesh.fv_range(f)) vs.push_back(v);
-    for (size_t k = 1; k + 1 < vs.size(); ++k) {
-      Triangle t;
-      int ids[3] = {vs[0].idx(), vs[k].idx(), vs[k + 1].idx()};
-      for (int j = 0; j < 3; ++j) {
-        const auto& q = mesh.point(vs[j == 0 ? 0 : k + j - 1]);
-        t.p[j] = Eigen::Vector3d(q[0], q[1], q[2]);
-        t.v[j] = ids[j];
-      }
-      t.face = f.idx();
-      for (int j = 0; j < 3; ++j) longest = std::max(longest, (t.p[j] - t.p[(j + 1) % 3]).norm());
-      triangles.push_back(t);
+    std::vector<int> ids;
+    for (auto v : mesh.fv_range(f)) ids.push_back(v.idx());
+    for (size_t k = 1; k + 1 < ids.size(); ++k) {
+      triangles.corners.push_back({ids[0], ids[k], ids[k + 1]});
+      triangles.face.push_back(f.idx());
     }
   }
-  if (triangles.empty()) return {};
-  double cell = std::max(longest, 1e-12);
-  auto key = [](long x, long y, long z) { return (x * 73856093L) ^ (y * 19349663L) ^ (z * 83492791L); };
-  std::unordered_map<long, std::vector<int>> grid;
-  auto cell_of = [&](double v) { return long(std::floor(v / cell)); };
-  for (size_t i = 0; i < triangles.size(); ++i) {
-    Eigen::Vector3d lo = triangles[i].p[0].cwiseMin(triangles[i].p[1]).cwiseMin(triangles[i].p[2]);
-    Eigen::Vector3d hi = triangles[i].p[0].cwiseMax(triangles[i].p[1]).cwiseMax(triangles[i].p[2]);
-    for (long x = cell_of(lo.x()); x <= cell_of(hi.x()); ++x)
-      for (long y = cell_of(lo.y()); y <= cell_of(hi.y()); ++y)
-        for (long z = cell_of(lo.z()); z <= cell_of(hi.z()); ++z) grid[key(x, y, z)].push_back(int(i));
+  return triangles;
+}
+
+namespace {
+
+//! Whether triangles a and b (not sharing a vertex) intersect: boxes first,
+//! then the exact test.
+bool triangle_pair_intersects(const MeshTriangles& triangles, size_t a, size_t b) {
+  for (int i : triangles.corners[a])
+    for (int j : triangles.corners[b])
+      if (i == j) return false;
+  Eigen::Vector3d pa[3], pb[3];
+  for (int k = 0; k < 3; ++k) pa[k] = triangles.corner(a, k), pb[k] = triangles.corner(b, k);
+  Eigen::Vector3d lo_a = pa[0].cwiseMin(pa[1]).cwiseMin(pa[2]), hi_a = pa[0].cwiseMax(pa[1]).cwiseMax(pa[2]);
+  Eigen::Vector3d lo_b = pb[0].cwiseMin(pb[1]).cwiseMin(pb[2]), hi_b = pb[0].cwiseMax(pb[1]).cwiseMax(pb[2]);
+  if ((lo_a.array() > hi_b.array()).any() || (lo_b.array() > hi_a.array()).any()) return false;
+  return triangles_intersect(pa, pb);
+}
+
+}  // namespace
+
+std::vector<std::pair<int, int>> intersecting_face_pairs(const QuadMesh& mesh) {
+  MeshTriangles triangles = triangulate(mesh);
+  if (triangles.size() == 0) return {};
+  double longest = 0;
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(INFINITY);
+  for (size_t t = 0; t < triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      longest = std::max(longest, (triangles.corner(t, k) - triangles.corner(t, (k + 1) % 3)).norm());
+      low = low.cwiseMin(triangles.corner(t, k));
+    }
+  // Cells of 4/3 the longest edge: every point of a triangle lies within 2/3
+  // of it from the centroid, so touching triangles sit in neighbouring cells.
+  double cell = std::max(4.0 / 3.0 * longest, 1e-12);
+  constexpr int kBits = 21;
+  Eigen::Vector3d high = low;
+  for (const Eigen::Vector3d& p : triangles.positions) high = high.cwiseMax(p);
+  cell = std::max(cell, (high - low).maxCoeff() / double((1 << kBits) - 3));
+  auto cell_of = [&](const Eigen::Vector3d& p) {
+    Eigen::Vector3d c = (p - low) / cell;
+    return std::array<uint64_t, 3>{uint64_t(c.x()) + 1, uint64_t(c.y()) + 1, uint64_t(c.z()) + 1};
+  };
+  auto key = [](uint64_t x, uint64_t y, uint64_t z) { return x << (2 * kBits) | y << kBits | z; };
+  // One entry a triangle, sorted by cell: runs of equal keys are the cells.
+  std::vector<std::pair<uint64_t, uint32_t>> entries(triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    auto c = cell_of(triangles.centroid(t));
+    entries[t] = {key(c[0], c[1], c[2]), uint32_t(t)};
+  }
+  std::sort(entries.begin(), entries.end());
+  std::unordered_map<uint64_t, std::pair<uint32_t, uint32_t>> runs;
+  for (size_t begin = 0; begin < entries.size();) {
+    size_t end = begin;
+    while (end < entries.size() && entries[end].first == entries[begin].first) ++end;
+    runs.emplace(entries[begin].first, std::make_pair(uint32_t(begin), uint32_t(end)));
+    begin = end;
   }
   std::set<std::pair<int, int>> pairs;
-  for (const auto& [k, members] : grid) {
-    for (size_t m = 0; m < members.size(); ++m) {
-      for (size_t n = m + 1; n < members.size(); ++n) {
-        const Triangle& a = triangles[members[m]];
-        const Triangle& b = triangles[members[n]];
-        if (a.face == b.face) continue;
-        std::pair<int, int> pair{std::min(a.face, b.face), std::max(a.face, b.face)};
-        if (pairs.count(pair)) continue;
-        bool shared = false;
-        for (int i : a.v)
-          for (int j : b.v) shared = shared || i == j;
-        if (shared) continue;
-        Eigen::Vector3d lo_a = a.p[0].cwiseMin(a.p[1]).cwiseMin(a.p[2]), hi_a = a.p[0].cwiseMax(a.p[1]).cwiseMax(a.p[2]);
-        Eigen::Vector3d lo_b = b.p[0].cwiseMin(b.p[1]).cwiseMin(b.p[2]), hi_b = b.p[0].cwiseMax(b.p[1]).cwiseMax(b.p[2]);
-        if ((lo_a.array() > hi_b.array()).any() || (lo_b.array() > hi_a.array()).any()) continue;
-        if (triangles_intersect(a.p, b.p)) pairs.insert(pair);
-      }
-    }
+  auto test = [&](uint32_t a, uint32_t b) {
+    int fa = triangles.face[a], fb = triangles.face[b];
+    if (fa == fb) return;
+    std::pair<int, int> pair{std::min(fa, fb), std::max(fa, fb)};
+    if (!pairs.count(pair) && triangle_pair_intersects(triangles, a, b)) pairs.insert(pair);
+  };
+  for (const auto& [k, run] : runs) {
+    uint64_t x = k >> (2 * kBits), y = (k >> kBits) & ((1u << kBits) - 1), z = k & ((1u << kBits) - 1);
+    for (uint64_t dx = 0; dx < 3; ++dx)
+      for (uint64_t dy = 0; dy < 3; ++dy)
+        for (uint64_t dz = 0; dz < 3; ++dz) {
+          uint64_t other = key(x + dx - 1, y + dy - 1, z + dz - 1);
+          if (other < k) continue;  // each pair of cells once
+          auto found = runs.find(other);
+          if (found == runs.end()) continue;
+          for (uint32_t m = run.first; m < run.second; ++m)
+            for (uint32_t n = other == k ? m + 1 : found->second.first; n < found->second.second; ++n)
+              test(entries[m].second, entries[n].second);
+        }
   }
   return {pairs.begin(), pairs.end()};
 }

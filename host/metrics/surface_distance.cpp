@@ -38,29 +38,20 @@ std::vector<double> mesh_to_cloud_distances(const QuadMesh& mesh, const CellTree
 }
 
 std::vector<double> cloud_to_mesh_distances(const QuadMesh& mesh, const PointCloud& cloud, size_t max_points) {
-  std::vector<std::array<Eigen::Vector3d, 3>> triangles;
-  std::vector<Eigen::Vector3d> centroids;
-  for (auto f : mesh.faces()) {
-    std::vector<Eigen::Vector3d> corners;
-    for (auto v : mesh.fv_range(f)) {
-      const auto& p = mesh.point(v);
-      corners.emplace_back(p[0], p[1], p[2]);
-    }
-    for (size_t k = 1; k + 1 < corners.size(); ++k) {
-      triangles.push_back({corners[0], corners[k], corners[k + 1]});
-      centroids.push_back((corners[0] + corners[k] + corners[k + 1]) / 3.0);
-    }
-  }
-  PointIndex<double> index(centroids);
+  MeshTriangles triangles = triangulate(mesh);
+  std::vector<Eigen::Vector3f> centroids(triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t) centroids[t] = triangles.centroid(t).cast<float>();
+  PointIndex<float> index(centroids);
   size_t stride = max_points > 0 ? std::max<size_t>(1, (cloud.size() + max_points - 1) / max_points) : 1;
   std::vector<double> out((cloud.size() + stride - 1) / stride);
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < long(out.size()); ++i) {
-    Eigen::Vector3d p = cloud.points[size_t(i) * stride].cast<double>();
+    const Eigen::Vector3f& q = cloud.points[size_t(i) * stride];
+    Eigen::Vector3d p = q.cast<double>();
     double best = INFINITY;
-    for (size_t t : index.k_nearest(p, 8))
-      best = std::min(best, point_triangle_distance(p, triangles[t][0], triangles[t][1], triangles[t][2]));
-    out[i] = best;
+    for (size_t t : index.k_nearest(q, 8))
+      best = std::min(best, point_triangle_distance(p, triangles.corner(t, 0), triangles.corner(t, 1), triangles.corner(t, 2)));
+    out[size_t(i)] = best;
   }
   return out;
 }
