@@ -40,7 +40,7 @@ TEST(Philox, UniformBelowCoversTheRangeEvenly) {
 }
 
 TEST(Philox, SampleIndexMatchesTheStreamUsedByTheStep) {
-  // mcq_minimal_projection draws sample s from word s % 4 of counter
+  // mcq_cell_distance draws sample s from word s % 4 of counter
   // (vertex, ray, s / 4); mcq_sample_index is its documented definition.
   for (uint32_t s = 0; s < 10; ++s) {
     mcq_philox_block r = device::mcq_philox4x32_10(block(5, 3, s / 4, 0), 9, 2);

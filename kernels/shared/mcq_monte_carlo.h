@@ -70,7 +70,7 @@ MCQ_FN mcq_uint mcq_sample_index(mcq_uint seed, mcq_uint iteration, mcq_uint ver
  * across the cell, and by about 1.5 sigma under noise of sigma along the
  * normal (the least of 10 samples); the mean estimates the cell's middle,
  * unbiased, and averages the noise away (docs/DESIGN.md). */
-MCQ_FN float mcq_minimal_projection(const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points,
+MCQ_FN float mcq_cell_distance(const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points,
                                     int cell, mcq_vec3 q, mcq_vec3 dir, mcq_step_params params,
                                     mcq_uint vertex, mcq_uint ray) {
   mcq_uint first = cell_offsets[cell];
@@ -123,7 +123,7 @@ MCQ_FN float mcq_vertex_displacement(const MCQ_GLOBAL float* node_bounds, const 
     for (int k = 0; k < count; ++k) {
       if (cells[k] < 0) continue;
       mcq_vec3 dir = mcq_make_vec3(dir_x[k], dir_y[k], dir_z[k]);
-      float d = mcq_minimal_projection(cell_offsets, points, cells[k], q, dir, params, vertex, first + (mcq_uint)k);
+      float d = mcq_cell_distance(cell_offsets, points, cells[k], q, dir, params, vertex, first + (mcq_uint)k);
       if (MCQ_FABS(d) < params.epsilon) {
         sum += d;
         *feasible += 1u;
