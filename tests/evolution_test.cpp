@@ -43,6 +43,26 @@ struct Fixture {
       out.push_back(std::abs(shape.surface.signed_distance(Eigen::Vector3d(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]))));
     return out;
   }
+
+  //! Distances to the true surface relative to the local tube radius.
+  DistanceSummary relative_surface_distances(const std::vector<float>& positions) const {
+    std::vector<double> relative;
+    for (size_t v = 0; v < positions.size() / 3; ++v) {
+      Eigen::Vector3d x(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
+      relative.push_back(std::abs(shape.surface.signed_distance(x)) /
+                         shape.surface.capsules()[shape.surface.nearest_capsule(x)].radius);
+    }
+    return summarize_distances(relative);
+  }
+
+  //! Final positions of a serial evolution in `mode`, the rest as in `parameters`.
+  std::vector<float> evolve_serially(EvolutionParameters::Mode mode) const {
+    SerialBackend backend;
+    backend.load(cells, arrays);
+    EvolutionParameters p = parameters;
+    p.mode = mode;
+    return evolve(backend, p).positions;
+  }
 };
 
 //! Issue 4's quality bar, at the paper's parameters and the default cells:
@@ -58,13 +78,7 @@ TEST(SerialEvolution, VerticesEndOnTheTrueSurfaceAndCoverTheCloud) {
     EvolutionResult result = evolve(backend, f.parameters);
     ASSERT_EQ(result.iterations.size(), f.parameters.iterations);
     EXPECT_LT(result.iterations.back().error_level, 0.2 * result.initial_error_level) << name;
-    std::vector<double> relative;
-    for (size_t v = 0; v < result.positions.size() / 3; ++v) {
-      Eigen::Vector3d p(result.positions[3 * v], result.positions[3 * v + 1], result.positions[3 * v + 2]);
-      relative.push_back(std::abs(f.shape.surface.signed_distance(p)) /
-                         f.shape.surface.capsules()[f.shape.surface.nearest_capsule(p)].radius);
-    }
-    DistanceSummary to_surface = summarize_distances(relative);
+    DistanceSummary to_surface = f.relative_surface_distances(result.positions);
     EXPECT_LE(to_surface.mean, 0.01) << name;
     EXPECT_LE(to_surface.p95, 0.03) << name;
     QuadMesh mesh = f.initial.mesh;
@@ -134,18 +148,7 @@ TEST(RobustMode, NoiseDoesNotPullTheMeshOffTheSurface) {
     options.noise = sigma;
     Fixture f("t-shape", 40000, options);
     auto mean_distance = [&](EvolutionParameters::Mode mode) {
-      SerialBackend backend;
-      backend.load(f.cells, f.arrays);
-      EvolutionParameters p = f.parameters;
-      p.mode = mode;
-      std::vector<double> relative;
-      std::vector<float> positions = evolve(backend, p).positions;
-      for (size_t v = 0; v < positions.size() / 3; ++v) {
-        Eigen::Vector3d x(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
-        relative.push_back(std::abs(f.shape.surface.signed_distance(x)) /
-                           f.shape.surface.capsules()[f.shape.surface.nearest_capsule(x)].radius);
-      }
-      return summarize_distances(relative).mean;
+      return f.relative_surface_distances(f.evolve_serially(mode)).mean;
     };
     double robust = mean_distance(EvolutionParameters::Mode::kRobust);
     double paper = mean_distance(EvolutionParameters::Mode::kPaper);
@@ -160,20 +163,7 @@ TEST(RobustMode, HolesInTheScanAreSpanned) {
   ShapeOptions options;
   options.holes = 3;
   Fixture f("t-shape", 40000, options);
-  auto p95 = [&](EvolutionParameters::Mode mode) {
-    SerialBackend backend;
-    backend.load(f.cells, f.arrays);
-    EvolutionParameters p = f.parameters;
-    p.mode = mode;
-    std::vector<float> positions = evolve(backend, p).positions;
-    std::vector<double> relative;
-    for (size_t v = 0; v < positions.size() / 3; ++v) {
-      Eigen::Vector3d x(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
-      relative.push_back(std::abs(f.shape.surface.signed_distance(x)) /
-                         f.shape.surface.capsules()[f.shape.surface.nearest_capsule(x)].radius);
-    }
-    return summarize_distances(relative).p95;
-  };
+  auto p95 = [&](EvolutionParameters::Mode mode) { return f.relative_surface_distances(f.evolve_serially(mode)).p95; };
   double robust = p95(EvolutionParameters::Mode::kRobust), paper = p95(EvolutionParameters::Mode::kPaper);
   EXPECT_GT(paper, 0.2) << "the paper's vertices in the holes stay where they started";
   EXPECT_LT(robust, 0.08);
