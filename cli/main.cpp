@@ -42,6 +42,7 @@ const std::vector<std::string> kCadExtensions = {"step", "stp", "iges", "igs"};
 
 struct FitCommand {
   std::string points, skeleton, output, report, backend = "auto", ends = "auto", stage = "refined", mode = "robust";
+  std::string projection = "mean", fill_holes = "on";
   FitOptions options;
   double alpha_degrees = 10.0;
   double junction_degrees = 75.0;
@@ -77,6 +78,10 @@ struct FitCommand {
         ->check(CLI::IsMember({"robust", "paper"}))->capture_default_str();
     app->add_option("--relaxation", e.relaxation, "robust mode: tangential relaxation weight before each step (0 = off)")
         ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+    app->add_option("--projection", projection, "robust mode: a cell's distance along a ray from its samples: mean, or min (the paper's)")
+        ->check(CLI::IsMember({"mean", "min"}))->capture_default_str();
+    app->add_option("--fill-holes", fill_holes, "robust mode: vertices that find no cell take their neighbours' offset (on, off)")
+        ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
     app->add_option("--iterations", e.iterations, "maximal number of iterations")->capture_default_str();
     app->add_option("--tolerance", e.tolerance, "stop when the error level improves by less than this fraction (0 = never)")
         ->check(CLI::NonNegativeNumber)->capture_default_str();
@@ -102,6 +107,8 @@ struct FitCommand {
     options.evolve = evolution;
     options.evolution.alpha_max = alpha_degrees * M_PI / 180.0;
     options.evolution.mode = mode == "paper" ? EvolutionParameters::Mode::kPaper : EvolutionParameters::Mode::kRobust;
+    options.evolution.mean_projection = projection == "mean";
+    options.evolution.fill_holes = fill_holes == "on";
     options.initial.min_junction_angle = junction_degrees * M_PI / 180.0;
     options.backend = backend == "serial" ? BackendKind::kSerial : backend == "opencl" ? BackendKind::kOpenCL : BackendKind::kAuto;
     options.initial.ends = ends == "open" ? EndMode::kOpen : ends == "capped" ? EndMode::kCapped : EndMode::kAuto;

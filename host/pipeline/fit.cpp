@@ -68,6 +68,8 @@ nlohmann::json parameters_json(const FitOptions& o, double epsilon, double media
   const auto& e = o.evolution;
   return {{"mode", e.mode == EvolutionParameters::Mode::kPaper ? "paper" : "robust"},
           {"relaxation", e.relaxation},
+          {"projection", e.mode == EvolutionParameters::Mode::kPaper || !e.mean_projection ? "min" : "mean"},
+          {"fill_holes", e.mode == EvolutionParameters::Mode::kRobust && e.fill_holes},
           {"cones", e.cones},
           {"generators", e.generators},
           {"alpha_max", e.alpha_max},

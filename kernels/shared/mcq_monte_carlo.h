@@ -219,9 +219,10 @@ MCQ_FN mcq_vec3 mcq_hole_position(const MCQ_GLOBAL float* positions, const MCQ_G
   return mcq_add(mcq_load3(initial_positions, vertex), mcq_scale(mcq_load3(initial_normals, vertex), sum / count));
 }
 
-/* One vertex's new position: the paper's move along the normal, shortened
- * by the fold guard when the step asks for it; in a hole (no feasible ray,
- * params.fill_holes, not on an open rim) the neighbours' offset instead. */
+/* One vertex's new position: the paper's move along the normal, or in a
+ * hole (no feasible ray, params.fill_holes, not on an open rim) the
+ * neighbours' offset; either shortened by the fold guard when the step asks
+ * for it. */
 MCQ_FN mcq_vec3 mcq_evolve_vertex(const MCQ_GLOBAL float* positions, const MCQ_GLOBAL float* normals,
                                   const MCQ_GLOBAL float* initial_positions, const MCQ_GLOBAL float* initial_normals,
                                   const MCQ_GLOBAL mcq_uint* faces, const MCQ_GLOBAL mcq_uint* vertex_face_offsets,
@@ -232,13 +233,14 @@ MCQ_FN mcq_vec3 mcq_evolve_vertex(const MCQ_GLOBAL float* positions, const MCQ_G
   mcq_vec3 q = mcq_load3(positions, vertex);
   mcq_vec3 n = mcq_load3(normals, vertex);
   float delta = mcq_vertex_displacement(node_bounds, node_children, cell_offsets, points, q, n, vertex, params, feasible);
-  if (*feasible == 0u && params.fill_holes && !boundary[vertex])
-    return mcq_hole_position(positions, initial_positions, initial_normals, faces, vertex_face_offsets, vertex_faces,
-                             vertex);
   mcq_vec3 target = mcq_add(q, mcq_scale(n, delta));
-  if (params.fold_guard && delta != 0.0f)
-    target = mcq_add(q, mcq_scale(n, delta * mcq_fold_safe_fraction(positions, faces, vertex_face_offsets, vertex_faces,
-                                                                       vertex, q, target)));
+  int in_hole = *feasible == 0u && params.fill_holes && !boundary[vertex];
+  if (in_hole)
+    target = mcq_hole_position(positions, initial_positions, initial_normals, faces, vertex_face_offsets, vertex_faces,
+                               vertex);
+  if (params.fold_guard && (delta != 0.0f || in_hole))
+    target = mcq_add(q, mcq_scale(mcq_sub(target, q), mcq_fold_safe_fraction(positions, faces, vertex_face_offsets,
+                                                                              vertex_faces, vertex, q, target)));
   return target;
 }
 
