@@ -174,8 +174,7 @@ TrueSurfaceDistance measure_true_surface_distance(const QuadMesh& mesh, const Tu
 }
 
 nlohmann::json to_json(const TrueSurfaceDistance& d) {
-  auto summary = [](const DistanceSummary& s) { return nlohmann::json{{"mean", s.mean}, {"p95", s.p95}, {"max", s.max}}; };
-  return {{"absolute", summary(d.absolute)}, {"relative_to_radius", summary(d.relative)}};
+  return {{"absolute", to_json(d.absolute)}, {"relative_to_radius", to_json(d.relative)}};
 }
 
 nlohmann::json to_json(const MeshStatistics& s) {
@@ -191,10 +190,9 @@ nlohmann::json to_json(const MeshStatistics& s) {
 }
 
 nlohmann::json to_json(const QualityMetrics& m) {
-  auto summary = [](const DistanceSummary& d) { return nlohmann::json{{"mean", d.mean}, {"p95", d.p95}, {"max", d.max}}; };
   nlohmann::json j = {{"mesh", to_json(m.statistics)},
-                      {"mesh_to_cloud", summary(m.mesh_to_cloud)},
-                      {"cloud_to_mesh", summary(m.cloud_to_mesh)},
+                      {"mesh_to_cloud", to_json(m.mesh_to_cloud)},
+                      {"cloud_to_mesh", to_json(m.cloud_to_mesh)},
                       {"error_level", m.error_level},
                       {"intersecting_face_pairs", m.intersecting_face_pairs},
                       {"folded_edges", m.folded_edges},

@@ -22,6 +22,8 @@ DistanceSummary summarize_distances(std::vector<double> distances) {
   return s;
 }
 
+nlohmann::json to_json(const DistanceSummary& d) { return {{"mean", d.mean}, {"p95", d.p95}, {"max", d.max}}; }
+
 std::vector<double> mesh_to_cloud_distances(const QuadMesh& mesh, const CellTree& cells) {
   std::vector<double> out(mesh.n_vertices());
   // Host-side measurements use every core (the serial backend stays serial).

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <vector>
 
 #include "cells/cell_tree.h"
@@ -14,6 +15,9 @@ struct DistanceSummary {
 
 //! Summary of a list of distances (mean, 95th percentile, max).
 DistanceSummary summarize_distances(std::vector<double> distances);
+
+//! {"mean", "p95", "max"} for reports.
+nlohmann::json to_json(const DistanceSummary& distances);
 
 //! Distance of every mesh vertex to its nearest cloud point, searched in the
 //! cells (which hold every point), so no second index of the cloud is built.

@@ -171,7 +171,6 @@ void measure_seams(const QuadMesh& mesh, const PatchLayout& layout, const std::v
             [](const NormalGapSite& x, const NormalGapSite& y) { return x.max_normal_gap_degrees > y.max_normal_gap_degrees; });
 }
 
-nlohmann::json distances_json(const DistanceSummary& d) { return {{"mean", d.mean}, {"p95", d.p95}, {"max", d.max}}; }
 
 }  // namespace
 
@@ -204,9 +203,9 @@ nlohmann::json to_json(const SurfaceChecks& c) {
   return {{"surfaces", c.surfaces},
           {"periodic_surfaces", c.periodic_surfaces},
           {"samples", c.samples},
-          {"distance_to_cloud", distances_json(c.to_cloud)},
-          {"quad_mesh_distance_to_cloud", distances_json(c.mesh_to_cloud)},
-          {"distance_to_quad_mesh", distances_json(c.to_mesh)},
+          {"distance_to_cloud", to_json(c.to_cloud)},
+          {"quad_mesh_distance_to_cloud", to_json(c.mesh_to_cloud)},
+          {"distance_to_quad_mesh", to_json(c.to_mesh)},
           {"seam_edges", c.seam_edges},
           {"max_position_gap", c.max_position_gap},
           {"tangent_tolerance_degrees", c.tangent_tolerance_degrees},
