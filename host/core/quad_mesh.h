@@ -18,6 +18,11 @@ struct QuadMeshTraits : public OpenMesh::DefaultTraits {
 //! The host-side mesh used for topology work, refinement and writing.
 using QuadMesh = OpenMesh::PolyMesh_ArrayKernelT<QuadMeshTraits>;
 
+//! Regular vertex of a quad mesh: valence 4 inside, 3 on an open boundary.
+inline bool is_regular_vertex(const QuadMesh& mesh, QuadMesh::VertexHandle v) {
+  return mesh.valence(v) == (mesh.is_boundary(v) ? 3u : 4u);
+}
+
 //! A vertex's position as an Eigen vector.
 inline Eigen::Vector3d point_of(const QuadMesh& mesh, QuadMesh::VertexHandle v) {
   const auto& p = mesh.point(v);

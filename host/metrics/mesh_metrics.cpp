@@ -12,8 +12,7 @@ std::vector<int> irregular_vertices(const QuadMesh& mesh) {
   std::vector<int> out;
   for (auto v : mesh.vertices()) {
     if (mesh.is_isolated(v)) continue;
-    size_t regular = mesh.is_boundary(v) ? 3 : 4;
-    if (mesh.valence(v) != regular) out.push_back(v.idx());
+    if (!is_regular_vertex(mesh, v)) out.push_back(v.idx());
   }
   return out;
 }

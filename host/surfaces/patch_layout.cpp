@@ -14,10 +14,6 @@ namespace {
 using Cell = Eigen::Vector2i;
 using Corners = std::array<Cell, 4>;  // grid coordinates of a face's corners, in halfedge order
 
-bool is_regular(const QuadMesh& mesh, QuadMesh::VertexHandle v) {
-  return mesh.valence(v) == (mesh.is_boundary(v) ? 3u : 4u);
-}
-
 //! The halfedge leaving b = to(h) straight ahead of h, through a regular
 //! interior vertex b (two turns around b from b->a).
 QuadMesh::HalfedgeHandle straight_on(const QuadMesh& mesh, QuadMesh::HalfedgeHandle h) {
@@ -30,7 +26,7 @@ QuadMesh::HalfedgeHandle straight_on(const QuadMesh& mesh, QuadMesh::HalfedgeHan
 size_t trace_separatrices(const QuadMesh& mesh, std::vector<char>& marked) {
   size_t irregular = 0;
   for (auto v : mesh.vertices()) {
-    if (is_regular(mesh, v)) continue;
+    if (is_regular_vertex(mesh, v)) continue;
     ++irregular;
     for (auto start : mesh.voh_range(v)) {
       QuadMesh::HalfedgeHandle h = start;

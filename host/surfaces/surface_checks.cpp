@@ -11,7 +11,6 @@
 namespace mcquad {
 namespace {
 
-
 //! A vertex's parameters in the surface of a face it belongs to.
 Eigen::Vector2d parameter_in_face(const QuadMesh& mesh, const PatchLayout& layout, QuadMesh::FaceHandle f,
                                   QuadMesh::VertexHandle v) {
@@ -30,7 +29,7 @@ void distances_to_irregular(const QuadMesh& mesh, std::vector<int>& distance, st
   nearest.assign(mesh.n_vertices(), -1);
   std::queue<QuadMesh::VertexHandle> queue;
   for (auto v : mesh.vertices()) {
-    if (mesh.valence(v) == (mesh.is_boundary(v) ? 3u : 4u)) continue;
+    if (is_regular_vertex(mesh, v)) continue;
     distance[size_t(v.idx())] = 0;
     nearest[size_t(v.idx())] = v.idx();
     queue.push(v);
