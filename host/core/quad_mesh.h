@@ -36,6 +36,14 @@ inline std::vector<Eigen::Vector3d> face_corners(const QuadMesh& mesh, QuadMesh:
   return corners;
 }
 
+//! The mean of a face's corners.
+inline Eigen::Vector3d face_centroid(const QuadMesh& mesh, int face) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  int corners = 0;
+  for (auto v : mesh.fv_range(mesh.face_handle(face))) sum += point_of(mesh, v), ++corners;
+  return corners ? Eigen::Vector3d(sum / corners) : sum;
+}
+
 //! Twice the vector area of a quad: the cross product of its diagonals,
 //! exact for planar quads and well defined for bent ones.
 inline Eigen::Vector3d quad_vector_area(const std::vector<Eigen::Vector3d>& c) {

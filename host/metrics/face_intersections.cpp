@@ -1,8 +1,6 @@
 #include "metrics/face_intersections.h"
 
 #include <algorithm>
-#include <set>
-#include <unordered_map>
 
 namespace mcquad {
 namespace {
@@ -75,6 +73,23 @@ MeshTriangles triangulate(const QuadMesh& mesh) {
   return triangles;
 }
 
+MeshTriangles triangulate(const std::vector<uint32_t>& quads, const std::vector<float>& positions) {
+  MeshTriangles triangles;
+  triangles.positions.reserve(positions.size() / 3);
+  for (size_t i = 0; i + 2 < positions.size(); i += 3)
+    triangles.positions.emplace_back(positions[i], positions[i + 1], positions[i + 2]);
+  size_t faces = quads.size() / 4;
+  triangles.corners.reserve(2 * faces);
+  triangles.face.reserve(2 * faces);
+  for (size_t f = 0; f < faces; ++f) {
+    const uint32_t* q = &quads[4 * f];
+    triangles.corners.push_back({int(q[0]), int(q[1]), int(q[2])});
+    triangles.corners.push_back({int(q[0]), int(q[2]), int(q[3])});
+    triangles.face.insert(triangles.face.end(), {int(f), int(f)});
+  }
+  return triangles;
+}
+
 namespace {
 
 //! Whether triangles a and b (not sharing a vertex) intersect: boxes first,
@@ -94,63 +109,90 @@ bool triangle_pair_intersects(const MeshTriangles& triangles, size_t a, size_t b
 }  // namespace
 
 std::vector<std::pair<int, int>> intersecting_face_pairs(const QuadMesh& mesh) {
-  MeshTriangles triangles = triangulate(mesh);
-  if (triangles.size() == 0) return {};
-  double longest = 0;
-  Eigen::Vector3d low = Eigen::Vector3d::Constant(INFINITY);
-  for (size_t t = 0; t < triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      longest = std::max(longest, (triangles.corner(t, k) - triangles.corner(t, (k + 1) % 3)).norm());
-      low = low.cwiseMin(triangles.corner(t, k));
-    }
-  // Cells of 4/3 the longest edge: every point of a triangle lies within 2/3
-  // of it from the centroid, so touching triangles sit in neighbouring cells.
-  double cell = std::max(4.0 / 3.0 * longest, 1e-12);
+  return intersecting_face_pairs(triangulate(mesh));
+}
+
+std::vector<std::pair<int, int>> intersecting_face_pairs(const MeshTriangles& triangles,
+                                                         const std::vector<char>* only_faces) {
+  size_t n = triangles.size();
+  if (n == 0) return {};
+  std::vector<Eigen::Vector3d> lo(n), hi(n);
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(INFINITY), high = -low;
+  double extent = 0;
+  for (size_t t = 0; t < n; ++t) {
+    lo[t] = triangles.corner(t, 0).cwiseMin(triangles.corner(t, 1)).cwiseMin(triangles.corner(t, 2));
+    hi[t] = triangles.corner(t, 0).cwiseMax(triangles.corner(t, 1)).cwiseMax(triangles.corner(t, 2));
+    low = low.cwiseMin(lo[t]);
+    high = high.cwiseMax(hi[t]);
+    extent += (hi[t] - lo[t]).maxCoeff();
+  }
+  // Each triangle goes into every grid cell its box overlaps. Cells of twice
+  // the mean box extent keep that to a few cells a triangle, however uneven
+  // the edge lengths (a cell of the longest edge puts thousands of small
+  // triangles together next to one long one).
   constexpr int kBits = 21;
-  Eigen::Vector3d high = low;
-  for (const Eigen::Vector3d& p : triangles.positions) high = high.cwiseMax(p);
-  cell = std::max(cell, (high - low).maxCoeff() / double((1 << kBits) - 3));
+  double cell = std::max({2.0 * extent / double(n), (high - low).maxCoeff() / double((1 << kBits) - 2), 1e-12});
   auto cell_of = [&](const Eigen::Vector3d& p) {
-    Eigen::Vector3d c = (p - low) / cell;
-    return std::array<uint64_t, 3>{uint64_t(c.x()) + 1, uint64_t(c.y()) + 1, uint64_t(c.z()) + 1};
+    Eigen::Vector3d c = ((p - low) / cell).cwiseMax(0.0);
+    return Eigen::Matrix<uint64_t, 3, 1>(uint64_t(c.x()), uint64_t(c.y()), uint64_t(c.z()));
   };
-  auto key = [](uint64_t x, uint64_t y, uint64_t z) { return x << (2 * kBits) | y << kBits | z; };
-  // One entry a triangle, sorted by cell: runs of equal keys are the cells.
-  std::vector<std::pair<uint64_t, uint32_t>> entries(triangles.size());
-  for (size_t t = 0; t < triangles.size(); ++t) {
-    auto c = cell_of(triangles.centroid(t));
-    entries[t] = {key(c[0], c[1], c[2]), uint32_t(t)};
+  auto key = [](const Eigen::Matrix<uint64_t, 3, 1>& c) { return c.x() << (2 * kBits) | c.y() << kBits | c.z(); };
+  auto for_each_cell = [&](size_t t, auto&& visit) {
+    auto a = cell_of(lo[t]), b = cell_of(hi[t]);
+    for (uint64_t x = a.x(); x <= b.x(); ++x)
+      for (uint64_t y = a.y(); y <= b.y(); ++y)
+        for (uint64_t z = a.z(); z <= b.z(); ++z) visit(key({x, y, z}));
+  };
+  // With `only_faces`, just the cells those faces touch matter: the other
+  // triangles enter the grid only where they share such a cell.
+  auto is_wanted = [&](size_t t) { return !only_faces || (*only_faces)[size_t(triangles.face[t])]; };
+  std::vector<uint64_t> wanted_cells;
+  if (only_faces) {
+    for (size_t t = 0; t < n; ++t)
+      if (is_wanted(t)) for_each_cell(t, [&](uint64_t k) { wanted_cells.push_back(k); });
+    std::sort(wanted_cells.begin(), wanted_cells.end());
+    wanted_cells.erase(std::unique(wanted_cells.begin(), wanted_cells.end()), wanted_cells.end());
   }
+  std::vector<std::pair<uint64_t, uint32_t>> entries;
+  entries.reserve(only_faces ? 8 * wanted_cells.size() : 2 * n);
+  for (size_t t = 0; t < n; ++t)
+    for_each_cell(t, [&](uint64_t k) {
+      if (!only_faces || std::binary_search(wanted_cells.begin(), wanted_cells.end(), k)) entries.emplace_back(k, uint32_t(t));
+    });
   std::sort(entries.begin(), entries.end());
-  std::unordered_map<uint64_t, std::pair<uint32_t, uint32_t>> runs;
-  for (size_t begin = 0; begin < entries.size();) {
-    size_t end = begin;
-    while (end < entries.size() && entries[end].first == entries[begin].first) ++end;
-    runs.emplace(entries[begin].first, std::make_pair(uint32_t(begin), uint32_t(end)));
-    begin = end;
-  }
-  std::set<std::pair<int, int>> pairs;
-  auto test = [&](uint32_t a, uint32_t b) {
-    int fa = triangles.face[a], fb = triangles.face[b];
-    if (fa == fb) return;
-    std::pair<int, int> pair{std::min(fa, fb), std::max(fa, fb)};
-    if (!pairs.count(pair) && triangle_pair_intersects(triangles, a, b)) pairs.insert(pair);
-  };
-  for (const auto& [k, run] : runs) {
-    uint64_t x = k >> (2 * kBits), y = (k >> kBits) & ((1u << kBits) - 1), z = k & ((1u << kBits) - 1);
-    for (uint64_t dx = 0; dx < 3; ++dx)
-      for (uint64_t dy = 0; dy < 3; ++dy)
-        for (uint64_t dz = 0; dz < 3; ++dz) {
-          uint64_t other = key(x + dx - 1, y + dy - 1, z + dz - 1);
-          if (other < k) continue;  // each pair of cells once
-          auto found = runs.find(other);
-          if (found == runs.end()) continue;
-          for (uint32_t m = run.first; m < run.second; ++m)
-            for (uint32_t n = other == k ? m + 1 : found->second.first; n < found->second.second; ++n)
-              test(entries[m].second, entries[n].second);
+  std::vector<size_t> runs;  // where each cell's run of entries begins
+  for (size_t k = 0; k < entries.size(); ++k)
+    if (k == 0 || entries[k].first != entries[k - 1].first) runs.push_back(k);
+  runs.push_back(entries.size());
+  std::vector<std::pair<int, int>> pairs;
+  // Threads pay off only on large meshes (the evolution's guard calls this
+  // every step, often with a few faces).
+#pragma omp parallel if (entries.size() > 50000)
+  {
+    std::vector<std::pair<int, int>> found;
+    long cells = long(runs.size()) - 1;
+#pragma omp for schedule(dynamic, 64)
+    for (long r = 0; r < cells; ++r) {
+      uint64_t here = entries[runs[size_t(r)]].first;
+      for (size_t m = runs[size_t(r)]; m < runs[size_t(r) + 1]; ++m)
+        for (size_t k = m + 1; k < runs[size_t(r) + 1]; ++k) {
+          uint32_t a = entries[m].second, b = entries[k].second;
+          int fa = triangles.face[a], fb = triangles.face[b];
+          if (fa == fb || (only_faces && !(*only_faces)[size_t(fa)] && !(*only_faces)[size_t(fb)])) continue;
+          // A pair of boxes overlaps in several cells; it is tested in the
+          // one holding the low corner of the overlap.
+          if ((lo[a].cwiseMax(lo[b]).array() > hi[a].cwiseMin(hi[b]).array()).any()) continue;
+          if (key(cell_of(lo[a].cwiseMax(lo[b]))) != here) continue;
+          if (triangle_pair_intersects(triangles, a, b)) found.emplace_back(std::min(fa, fb), std::max(fa, fb));
         }
+    }
+#pragma omp critical
+    pairs.insert(pairs.end(), found.begin(), found.end());
   }
-  return {pairs.begin(), pairs.end()};
+  // A quad is two triangles, so a pair of faces can be found twice.
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  return pairs;
 }
 
 }  // namespace mcquad

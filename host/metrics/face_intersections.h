@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -32,12 +33,17 @@ struct MeshTriangles {
 };
 
 MeshTriangles triangulate(const QuadMesh& mesh);
+//! The same from flat quads (4 vertex ids each) and positions (3 floats each).
+MeshTriangles triangulate(const std::vector<uint32_t>& quads, const std::vector<float>& positions);
 
-//! Pairs of faces that intersect, faces sharing a vertex excluded. Each quad
-//! is split into two triangles along its 0-2 diagonal. Candidates are the
-//! triangles whose centroids fall in the same or neighbouring cells of a
-//! grid of 4/3 the longest edge (two triangles that touch have centroids
-//! closer than that), then an exact test.
+//! Pairs of faces that intersect, faces sharing a vertex excluded, sorted.
+//! Each quad is split into two triangles along its 0-2 diagonal. Candidates
+//! are the triangles whose bounding boxes overlap in a uniform grid (each
+//! triangle in every cell its box touches), then an exact test.
 std::vector<std::pair<int, int>> intersecting_face_pairs(const QuadMesh& mesh);
+//! The same on triangles; with `only_faces` (per face, nonzero = test it),
+//! just the pairs with at least one of those faces.
+std::vector<std::pair<int, int>> intersecting_face_pairs(const MeshTriangles& triangles,
+                                                         const std::vector<char>* only_faces = nullptr);
 
 }  // namespace mcquad

@@ -155,7 +155,10 @@ QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, co
   m.error_level = mesh.n_vertices() ? sum / mesh.n_vertices() : 0.0;
   if (skeleton) m.inward_faces = long(inward_faces(mesh, *skeleton));
   m.folded_edges = folded_edges(mesh);
-  m.intersecting_face_pairs = intersecting_face_pairs(mesh).size();
+  std::vector<std::pair<int, int>> crossing = intersecting_face_pairs(mesh);
+  m.intersecting_face_pairs = crossing.size();
+  for (size_t k = 0; k < crossing.size() && k < QualityMetrics::kMaxCrossingSites; ++k)
+    m.crossing_sites.push_back(0.5 * (face_centroid(mesh, crossing[k].first) + face_centroid(mesh, crossing[k].second)));
   m.quad_shape = measure_quad_shape(mesh);
   return m;
 }
@@ -197,6 +200,9 @@ nlohmann::json to_json(const QualityMetrics& m) {
                       {"folded_edges", m.folded_edges},
                       {"quad_shape", to_json(m.quad_shape)}};
   if (m.inward_faces >= 0) j["inward_faces"] = m.inward_faces;
+  nlohmann::json sites = nlohmann::json::array();
+  for (const Eigen::Vector3d& p : m.crossing_sites) sites.push_back({p.x(), p.y(), p.z()});
+  j["crossing_sites"] = sites;
   return j;
 }
 

@@ -38,6 +38,10 @@ struct QualityMetrics {
   long inward_faces = -1;          //!< faces whose normal points into the tube (-1: no skeleton)
   size_t folded_edges = 0;         //!< edges between faces folded over each other
   size_t intersecting_face_pairs = 0;
+  //! Where faces cross: the midpoint of each pair's face centroids, for the
+  //! first kMaxCrossingSites pairs (a user looks there first).
+  std::vector<Eigen::Vector3d> crossing_sites;
+  static constexpr size_t kMaxCrossingSites = 100;
   QuadShape quad_shape;
 };
 
