@@ -136,7 +136,7 @@ void BM_Step(benchmark::State& state) {
   Prepared& p = prepared(size_t(state.range(1)), size_t(state.range(2)));
   auto backend = backend_for(int(state.range(0)));
   if (!backend) return state.SkipWithError("no OpenCL in this build");
-  backend->load(p.setup.cells, p.setup.arrays);
+  backend->load(p.setup.cells, p.setup.arrays, p.setup.regions);
   unsigned iteration = 0;
   for (auto _ : state) {
     backend->step(make_step_params(p.parameters, iteration++));
@@ -151,7 +151,7 @@ void BM_ErrorLevel(benchmark::State& state) {
   Prepared& p = prepared(size_t(state.range(1)), size_t(state.range(2)));
   auto backend = backend_for(int(state.range(0)));
   if (!backend) return state.SkipWithError("no OpenCL in this build");
-  backend->load(p.setup.cells, p.setup.arrays);
+  backend->load(p.setup.cells, p.setup.arrays, p.setup.regions);
   for (auto _ : state) benchmark::DoNotOptimize(backend->error_level());
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(p.setup.arrays.vertex_count()));
   state.SetLabel(backend->name());

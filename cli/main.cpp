@@ -42,7 +42,7 @@ const std::vector<std::string> kCadExtensions = {"step", "stp", "iges", "igs"};
 
 struct FitCommand {
   std::string points, skeleton, output, report, backend = "auto", ends = "auto", stage = "refined", mode = "robust";
-  std::string projection = "mean", fill_holes = "on";
+  std::string projection = "mean", fill_holes = "on", crossing_guard = "on", own_cells = "on", local_epsilon = "on";
   FitOptions options;
   double alpha_degrees = 10.0;
   double junction_degrees = 75.0;
@@ -82,6 +82,12 @@ struct FitCommand {
         ->check(CLI::IsMember({"mean", "min"}))->capture_default_str();
     app->add_option("--fill-holes", fill_holes, "robust mode: vertices that find no cell take their neighbours' offset (on, off)")
         ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
+    app->add_option("--crossing-guard", crossing_guard, "robust mode: undo moves that make faces cross after each step (on, off)")
+        ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
+    app->add_option("--own-cells", own_cells, "robust mode: a vertex sees only the cells of the bones near its own (on, off)")
+        ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
+    app->add_option("--local-epsilon", local_epsilon, "robust mode: epsilon and the ray reach scale with the local radius (on, off)")
+        ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
     app->add_option("--iterations", e.iterations, "maximal number of iterations")->capture_default_str();
     app->add_option("--tolerance", e.tolerance, "stop when the error level improves by less than this fraction (0 = never)")
         ->check(CLI::NonNegativeNumber)->capture_default_str();
@@ -109,6 +115,9 @@ struct FitCommand {
     options.evolution.mode = mode == "paper" ? EvolutionParameters::Mode::kPaper : EvolutionParameters::Mode::kRobust;
     options.evolution.mean_projection = projection == "mean";
     options.evolution.fill_holes = fill_holes == "on";
+    options.evolution.crossing_guard = crossing_guard == "on";
+    options.evolution.own_cells = own_cells == "on";
+    options.evolution.local_epsilon = local_epsilon == "on";
     options.initial.min_junction_angle = junction_degrees * M_PI / 180.0;
     options.backend = backend == "serial" ? BackendKind::kSerial : backend == "opencl" ? BackendKind::kOpenCL : BackendKind::kAuto;
     options.initial.ends = ends == "open" ? EndMode::kOpen : ends == "capped" ? EndMode::kCapped : EndMode::kAuto;

@@ -12,14 +12,23 @@ __kernel void evolve_vertices(__global const float* positions, __global const fl
                               __global const uint* vertex_faces, __global const uint* boundary,
                               __global const float* node_bounds, __global const int* node_children,
                               __global const uint* cell_offsets, __global const float* points,
-                              const mcq_step_params params, const uint vertex_count) {
+                              __global const uint* cell_bones, __global const uint* vertex_bones,
+                              __global const float* vertex_scale, __global const uint* visible_offsets,
+                              __global const uint* visible_bones, const mcq_step_params params,
+                              const uint vertex_count) {
   uint v = get_global_id(0);
   if (v >= vertex_count) return;
+  mcq_regions regions;
+  regions.cell_bones = cell_bones;
+  regions.vertex_bones = vertex_bones;
+  regions.vertex_scale = vertex_scale;
+  regions.visible_offsets = visible_offsets;
+  regions.visible_bones = visible_bones;
   uint feasible;
   mcq_store3(new_positions, v,
              mcq_evolve_vertex(positions, normals, initial_positions, initial_normals, faces, vertex_face_offsets,
-                               vertex_faces, boundary, node_bounds, node_children, cell_offsets, points, v, params,
-                               &feasible));
+                               vertex_faces, boundary, node_bounds, node_children, cell_offsets, points, regions, v,
+                               params, &feasible));
 }
 
 __kernel void relax_tangentially(__global const float* positions, __global const float* normals,
@@ -72,10 +81,16 @@ __kernel void reduce_sum(__global const float* values, __global float* partial_s
 /* Test hooks: expose single shared functions so tests can compare them with
  * the host build of the same code. */
 /* One work-item per origin: its `rays` consecutive directions traced as
- * packets, as the step does. */
+ * packets, as the step does, seeing the cells of the `visible_count` bones
+ * in `visible` (0: all). */
 __kernel void test_ray_hits(__global const float* origins, __global const float* directions, const float reach,
                             __global const float* node_bounds, __global const int* node_children,
+                            __global const uint* cell_bones, __global const uint* visible, const uint visible_count,
                             __global int* cells, const uint rays, const uint origin_count) {
+  mcq_cell_filter filter;
+  filter.cell_bones = cell_bones;
+  filter.visible = visible;
+  filter.count = visible_count;
   uint i = get_global_id(0);
   if (i >= origin_count) return;
   for (uint first = 0; first < rays; first += MCQ_PACKET_SIZE) {
@@ -88,7 +103,8 @@ __kernel void test_ray_hits(__global const float* origins, __global const float*
       y[k] = d.y;
       z[k] = d.z;
     }
-    mcq_first_cell_hits(node_bounds, node_children, mcq_load3(origins, i), x, y, z, count, reach, hits, entries);
+    mcq_first_cell_hits(node_bounds, node_children, filter, mcq_load3(origins, i), x, y, z, count, reach, hits,
+                        entries);
     for (int k = 0; k < count; ++k) cells[i * rays + first + (uint)k] = hits[k];
   }
 }

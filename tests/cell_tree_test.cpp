@@ -111,7 +111,22 @@ struct Hit {
 
 //! Brute force: the leaf box entered first within reach, ties to the lower
 //! cell (the rule of mcq_hit_is_better); cell -1 when none.
-Hit first_hit_brute_force(const CellTree& cells, const Eigen::Vector3f& o, const Eigen::Vector3f& d, float reach) {
+//! Cells labelled with one of five bones, cell % 5, of which the filter
+//! sees bones 1 and 3: the traversals must pass through the others.
+struct BoneLabels {
+  std::vector<uint32_t> cell_bones, visible{1, 3};
+  explicit BoneLabels(const CellTree& cells) {
+    for (size_t c = 0; c < cells.cell_count(); ++c) cell_bones.push_back(uint32_t(c % 5));
+  }
+  device::mcq_cell_filter filter(bool on) const {
+    device::mcq_cell_filter f = device::mcq_no_cell_filter();
+    if (on) f = {cell_bones.data(), visible.data(), uint32_t(visible.size())};
+    return f;
+  }
+};
+
+Hit first_hit_brute_force(const CellTree& cells, const Eigen::Vector3f& o, const Eigen::Vector3f& d, float reach,
+                          device::mcq_cell_filter filter) {
   Hit best;
   device::mcq_vec3 inv = device::mcq_make_vec3(device::mcq_safe_inverse(d.x()), device::mcq_safe_inverse(d.y()),
                                                device::mcq_safe_inverse(d.z()));
@@ -120,7 +135,7 @@ Hit first_hit_brute_force(const CellTree& cells, const Eigen::Vector3f& o, const
     if (child >= 0) continue;
     int cell = -1 - child;
     float t = device::mcq_ray_box_entry(cells.node_bounds.data(), int(node), vec(o), inv);
-    if (t < 0 || t > reach) continue;
+    if (t < 0 || t > reach || !device::mcq_cell_is_visible(filter, cell)) continue;
     if (best.cell < 0 || t < best.entry || (t == best.entry && cell < best.cell)) best = {cell, t};
   }
   return best;
@@ -131,22 +146,30 @@ TEST(CellTree, FirstCellHitMatchesBruteForce) {
   CellTree cells = build_cell_tree(cloud, 16);
   std::mt19937 random(13);
   std::uniform_real_distribution<float> u(-2, 2);
-  int hits = 0, ties = 0;
+  BoneLabels labels(cells);
+  int hits = 0, ties = 0, filtered_hits = 0;
   for (int q = 0; q < 500; ++q) {
+    device::mcq_cell_filter filter = labels.filter(q % 4 == 1);
     Eigen::Vector3f o(u(random), u(random), u(random));
     if (q % 3 == 0) o = cloud.points[size_t(q)];  // inside several padded boxes
     Eigen::Vector3f d = Eigen::Vector3f(u(random), u(random), u(random)).normalized();
     if (q % 10 == 0) d = Eigen::Vector3f::UnitX();  // axis-parallel rays
     float reach = q % 2 ? 1.0f : 10.0f;
     float entry;
-    int cell = device::mcq_first_cell_hit(cells.node_bounds.data(), cells.node_children.data(), vec(o), vec(d), reach, &entry);
-    Hit expected = first_hit_brute_force(cells, o, d, reach);
+    int cell = device::mcq_first_cell_hit(cells.node_bounds.data(), cells.node_children.data(), filter, vec(o), vec(d),
+                                          reach, &entry);
+    Hit expected = first_hit_brute_force(cells, o, d, reach, filter);
     ASSERT_EQ(cell, expected.cell) << "ray " << q;
     if (cell < 0) continue;
     EXPECT_EQ(entry, expected.entry);
     hits += 1;
     ties += expected.entry == 0;
+    if (filter.count > 0) {
+      filtered_hits += 1;
+      EXPECT_TRUE(cell % 5 == 1 || cell % 5 == 3) << "ray " << q << " hit an invisible cell";
+    }
   }
+  EXPECT_GT(filtered_hits, 20);
   EXPECT_GT(hits, 150);  // the cloud is a thin slab: many random rays miss it
   EXPECT_GT(ties, 100);  // origins on the cloud sit in several boxes at once
 }
@@ -156,7 +179,9 @@ TEST(CellTree, PacketTraversalGivesEachRayItsOwnFirstHit) {
   CellTree cells = build_cell_tree(cloud, 6);
   std::mt19937 random(19);
   std::uniform_real_distribution<float> u(-1, 1);
+  BoneLabels labels(cells);
   for (int q = 0; q < 200; ++q) {
+    device::mcq_cell_filter filter = labels.filter(q % 4 == 3);
     Eigen::Vector3f o = q % 2 ? cloud.points[size_t(q)] : Eigen::Vector3f(u(random), u(random), 0.3f * u(random));
     Eigen::Vector3f axis = Eigen::Vector3f(u(random), u(random), u(random)).normalized();
     int count = 1 + q % MCQ_PACKET_SIZE;
@@ -168,11 +193,11 @@ TEST(CellTree, PacketTraversalGivesEachRayItsOwnFirstHit) {
       x[r] = d.x(), y[r] = d.y(), z[r] = d.z();
     }
     float reach = q % 3 ? 0.2f : 5.0f;
-    device::mcq_first_cell_hits(cells.node_bounds.data(), cells.node_children.data(), vec(o), x, y, z, count, reach,
-                                hit_cells, entries);
+    device::mcq_first_cell_hits(cells.node_bounds.data(), cells.node_children.data(), filter, vec(o), x, y, z, count,
+                                reach, hit_cells, entries);
     for (int r = 0; r < count; ++r) {
       float entry;
-      int cell = device::mcq_first_cell_hit(cells.node_bounds.data(), cells.node_children.data(), vec(o),
+      int cell = device::mcq_first_cell_hit(cells.node_bounds.data(), cells.node_children.data(), filter, vec(o),
                                             device::mcq_make_vec3(x[r], y[r], z[r]), reach, &entry);
       ASSERT_EQ(hit_cells[r], cell) << "packet " << q << " ray " << r;
       if (cell >= 0) {

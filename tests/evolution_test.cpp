@@ -27,6 +27,7 @@ struct Fixture {
   const InitialMesh& initial = setup.initial;
   const CellTree& cells = setup.cells;
   const MeshArrays& arrays = setup.arrays;
+  const SkeletonRegions& regions = setup.regions;
   EvolutionParameters parameters;
   double radius = setup.median_radius;
 
@@ -58,10 +59,10 @@ struct Fixture {
   //! Final positions of a serial evolution in `mode`, the rest as in `parameters`.
   std::vector<float> evolve_serially(EvolutionParameters::Mode mode) const {
     SerialBackend backend;
-    backend.load(cells, arrays);
+    backend.load(cells, arrays, regions);
     EvolutionParameters p = parameters;
     p.mode = mode;
-    return evolve(backend, p).positions;
+    return evolve(backend, arrays, p).positions;
   }
 };
 
@@ -74,8 +75,8 @@ TEST(SerialEvolution, VerticesEndOnTheTrueSurfaceAndCoverTheCloud) {
                               {"tube", 40000}, {"torus", 40000}, {"bent-tube", 40000}}) {
     Fixture f(name, points);
     SerialBackend backend;
-    backend.load(f.cells, f.arrays);
-    EvolutionResult result = evolve(backend, f.parameters);
+    backend.load(f.cells, f.arrays, f.regions);
+    EvolutionResult result = evolve(backend, f.arrays, f.parameters);
     ASSERT_EQ(result.iterations.size(), f.parameters.iterations);
     EXPECT_LT(result.iterations.back().error_level, 0.2 * result.initial_error_level) << name;
     DistanceSummary to_surface = f.relative_surface_distances(result.positions);
@@ -97,11 +98,11 @@ TEST(SerialEvolution, SameSeedSameResultDifferentSeedDifferent) {
   Fixture f("tube", 10000);
   auto run = [&](uint32_t seed) {
     SerialBackend backend;
-    backend.load(f.cells, f.arrays);
+    backend.load(f.cells, f.arrays, f.regions);
     EvolutionParameters p = f.parameters;
     p.seed = seed;
     p.iterations = 3;
-    return evolve(backend, p).positions;
+    return evolve(backend, f.arrays, p).positions;
   };
   EXPECT_EQ(run(7), run(7));
   EXPECT_NE(run(7), run(8));
@@ -110,11 +111,11 @@ TEST(SerialEvolution, SameSeedSameResultDifferentSeedDifferent) {
 TEST(SerialEvolution, ToleranceStopsEarly) {
   Fixture f("tube", 10000);
   SerialBackend backend;
-  backend.load(f.cells, f.arrays);
+  backend.load(f.cells, f.arrays, f.regions);
   EvolutionParameters p = f.parameters;
   p.iterations = 50;
   p.tolerance = 0.01;
-  EvolutionResult result = evolve(backend, p);
+  EvolutionResult result = evolve(backend, f.arrays, p);
   EXPECT_LT(result.iterations.size(), 50u);
 }
 
@@ -124,11 +125,11 @@ TEST(RobustMode, FoldsAndCrossesLessThanThePaperAtCreases) {
   Fixture f("t-shape", 30000);
   auto run = [&](EvolutionParameters::Mode mode) {
     SerialBackend backend;
-    backend.load(f.cells, f.arrays);
+    backend.load(f.cells, f.arrays, f.regions);
     EvolutionParameters p = f.parameters;
     p.mode = mode;
     QuadMesh mesh = f.initial.mesh;
-    set_positions(mesh, evolve(backend, p).positions);
+    set_positions(mesh, evolve(backend, f.arrays, p).positions);
     return std::make_pair(intersecting_face_pairs(mesh).size(), folded_edges(mesh));
   };
   auto paper = run(EvolutionParameters::Mode::kPaper);
@@ -202,8 +203,8 @@ size_t count_differing(const std::vector<float>& a, const std::vector<float>& b,
 //! vertices then differ by more than 1e-4 of the radius.
 size_t one_step_differences(const Fixture& f, SerialBackend& serial, OpenCLBackend& opencl,
                             const EvolutionParameters& parameters) {
-  serial.load(f.cells, f.arrays);
-  opencl.load(f.cells, f.arrays);
+  serial.load(f.cells, f.arrays, f.regions);
+  opencl.load(f.cells, f.arrays, f.regions);
   std::vector<float> normals_serial = serial.normals(), normals_cl = opencl.normals();
   for (size_t i = 0; i < normals_serial.size(); ++i) EXPECT_NEAR(normals_serial[i], normals_cl[i], 1e-5f);
   serial.step(make_step_params(parameters, 0));
@@ -241,9 +242,9 @@ TEST(OpenCLParity, TwentyIterationsReachTheSameQuality) {
   REQUIRE_OPENCL(opencl);
   Fixture f("torus", 40000);
   SerialBackend serial;
-  serial.load(f.cells, f.arrays);
-  opencl->load(f.cells, f.arrays);
-  EvolutionResult a = evolve(serial, f.parameters), b = evolve(*opencl, f.parameters);
+  serial.load(f.cells, f.arrays, f.regions);
+  opencl->load(f.cells, f.arrays, f.regions);
+  EvolutionResult a = evolve(serial, f.arrays, f.parameters), b = evolve(*opencl, f.arrays, f.parameters);
   EXPECT_NEAR(a.iterations.back().error_level, b.iterations.back().error_level, 0.1 * a.iterations.back().error_level + 1e-4);
   DistanceSummary da = summarize_distances(f.true_surface_distances(a.positions));
   DistanceSummary db = summarize_distances(f.true_surface_distances(b.positions));
@@ -257,9 +258,9 @@ TEST(OpenCLParity, HoleFillingMatchesTheSerialPath) {
   options.holes = 3;
   Fixture f("t-shape", 30000, options);
   SerialBackend serial;
-  serial.load(f.cells, f.arrays);
-  opencl->load(f.cells, f.arrays);
-  std::vector<float> a = evolve(serial, f.parameters).positions, b = evolve(*opencl, f.parameters).positions;
+  serial.load(f.cells, f.arrays, f.regions);
+  opencl->load(f.cells, f.arrays, f.regions);
+  std::vector<float> a = evolve(serial, f.arrays, f.parameters).positions, b = evolve(*opencl, f.arrays, f.parameters).positions;
   EXPECT_LE(count_differing(a, b, 1e-3f * float(f.radius)), a.size() / 3 / 50);
 }
 
@@ -268,16 +269,16 @@ TEST(OpenCLParity, SameSeedSameResultOnTheDevice) {
   Fixture f("tube", 10000);
   EvolutionParameters p = f.parameters;
   p.iterations = 4;
-  opencl->load(f.cells, f.arrays);
-  std::vector<float> first = evolve(*opencl, p).positions;
-  opencl->load(f.cells, f.arrays);
-  EXPECT_EQ(first, evolve(*opencl, p).positions);
+  opencl->load(f.cells, f.arrays, f.regions);
+  std::vector<float> first = evolve(*opencl, f.arrays, p).positions;
+  opencl->load(f.cells, f.arrays, f.regions);
+  EXPECT_EQ(first, evolve(*opencl, f.arrays, p).positions);
 }
 
 TEST(OpenCLKernels, PhiloxRaysAndTraversalMatchTheHost) {
   REQUIRE_OPENCL(opencl);
   Fixture f("tube", 8000);
-  opencl->load(f.cells, f.arrays);
+  opencl->load(f.cells, f.arrays, f.regions);
   cl::Context& context = opencl->context();
   cl::CommandQueue& queue = opencl->queue();
   // Philox streams.
@@ -324,12 +325,18 @@ TEST(OpenCLKernels, PhiloxRaysAndTraversalMatchTheHost) {
   }
   // The device traces each vertex's rays as packets; the host reference
   // traces them one by one. The tie rule makes both choose the same cell.
+  // Both see only the cells of the bones bone 0 sees, as robust mode would.
   cl::Buffer o = input(f.arrays.positions);
   cl::Buffer bounds = input(f.cells.node_bounds);
   cl::Buffer children = input(f.cells.node_children);
   cl::Buffer hits(context, CL_MEM_WRITE_ONLY, size_t(count) * rays * 4);
   cl::Kernel hit_kernel(opencl->program(), "test_ray_hits");
-  set_kernel_args(hit_kernel, o, directions, float(f.parameters.epsilon), bounds, children, hits, rays, count);
+  cl::Buffer cell_bones = input(f.regions.cell_bones);
+  std::vector<uint32_t> seen_by_bone0(f.regions.visible_bones.begin(),
+                                      f.regions.visible_bones.begin() + f.regions.visible_offsets[1]);
+  cl::Buffer visible = input(seen_by_bone0);
+  set_kernel_args(hit_kernel, o, directions, float(f.parameters.epsilon), bounds, children, cell_bones, visible,
+                  uint32_t(seen_by_bone0.size()), hits, rays, count);
   queue.enqueueNDRangeKernel(hit_kernel, cl::NullRange, cl::NDRange(count));
   std::vector<int> device_hits(size_t(count) * rays);
   queue.enqueueReadBuffer(hits, CL_TRUE, 0, device_hits.size() * 4, device_hits.data());
@@ -337,13 +344,15 @@ TEST(OpenCLKernels, PhiloxRaysAndTraversalMatchTheHost) {
   for (size_t i = 0; i < device_hits.size(); ++i) {
     float entry;
     int host = device::mcq_first_cell_hit(f.cells.node_bounds.data(), f.cells.node_children.data(),
+                                          device::mcq_cell_filter{f.regions.cell_bones.data(), seen_by_bone0.data(),
+                                                                  uint32_t(seen_by_bone0.size())},
                                           device::mcq_load3(f.arrays.positions.data(), uint32_t(i / rays)),
                                           device::mcq_load3(device_dirs.data(), uint32_t(i)),
                                           float(f.parameters.epsilon), &entry);
     ASSERT_EQ(host, device_hits[i]) << "vertex " << i / rays << " ray " << i % rays;
     hit += host >= 0;
   }
-  EXPECT_GT(hit, device_hits.size() / 2);
+  EXPECT_GT(hit, 100u) << "of " << device_hits.size() << " rays";  // bone 0 is one of many
 }
 #endif
 

@@ -132,9 +132,9 @@ TEST_P(SurfacesOnShapes, RegionsAreGridsAndSurfacesMeetAlongTheirSeams) {
   EvolutionParameters parameters;
   parameters.epsilon = automatic_epsilon(setup.median_radius);
   SerialBackend backend;
-  backend.load(setup.cells, setup.arrays);
+  backend.load(setup.cells, setup.arrays, setup.regions);
   QuadMesh mesh = setup.initial.mesh;
-  set_positions(mesh, evolve(backend, parameters).positions);
+  set_positions(mesh, evolve(backend, setup.arrays, parameters).positions);
   SurfaceModel model = build_surface_model(mesh);
   expect_partition(mesh, model.layout);
   const double scale = setup.median_radius;
@@ -172,9 +172,9 @@ TEST(SurfacesOnTheKnot, OnePeriodicSurfaceWithinTheMeshsDistance) {
   parameters.epsilon = automatic_epsilon(setup.median_radius);
   parameters.iterations = 10;
   SerialBackend backend;
-  backend.load(setup.cells, setup.arrays);
+  backend.load(setup.cells, setup.arrays, setup.regions);
   QuadMesh mesh = setup.initial.mesh;
-  set_positions(mesh, evolve(backend, parameters).positions);
+  set_positions(mesh, evolve(backend, setup.arrays, parameters).positions);
   SurfaceModel model = build_surface_model(mesh);
   ASSERT_EQ(model.surfaces.size(), 1u);
   EXPECT_TRUE(model.surfaces[0].periodic_v || model.surfaces[0].periodic_u);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cells/cell_tree.h"
+#include "cells/skeleton_regions.h"
 #include "evolution/shared_math.h"
 #include "mesh/mesh_arrays.h"
 
@@ -22,11 +23,11 @@ class EvolutionBackend {
   //! Where it runs, for reports ("host CPU", an OpenCL device's name).
   virtual std::string device_name() const = 0;
 
-  //! Takes the cells and the mesh (uploading them where that applies) and
-  //! computes the initial normals. `cells` and `mesh` must outlive the
-  //! backend: the serial one reads them, and the OpenCL one uses them in place
-  //! on a CPU device.
-  virtual void load(const CellTree& cells, const MeshArrays& mesh) = 0;
+  //! Takes the cells, the mesh and their skeleton regions (uploading them
+  //! where that applies) and computes the initial normals. All three must
+  //! outlive the backend: the serial one reads them, and the OpenCL one uses
+  //! them in place on a CPU device.
+  virtual void load(const CellTree& cells, const MeshArrays& mesh, const SkeletonRegions& regions) = 0;
   //! One Jacobi step of every vertex, then the normals of the new positions.
   virtual void step(const device::mcq_step_params& params) = 0;
   //! The paper's error level: mean distance of the vertices to the plane of
@@ -38,6 +39,8 @@ class EvolutionBackend {
   virtual std::vector<float> positions() = 0;
   //! Current vertex normals (3 floats each).
   virtual std::vector<float> normals() = 0;
+  //! Replaces the vertex positions (same count) and recomputes the normals.
+  virtual void set_positions(const std::vector<float>& positions) = 0;
 };
 
 enum class BackendKind { kAuto, kSerial, kOpenCL };

@@ -28,6 +28,15 @@ struct EvolutionParameters {
   bool mean_projection = true;
   //! Robust mode: vertices in holes of the scan take their neighbours' offset.
   bool fill_holes = true;
+  //! Robust mode: moves that make faces cross are undone after each step
+  //! (evolution/crossing_guard.h).
+  bool crossing_guard = true;
+  //! Robust mode: a vertex sees only the cells of the bones near its own
+  //! (cells/skeleton_regions.h).
+  bool own_cells = true;
+  //! Robust mode: epsilon and the ray reach scale with the vertex's bone
+  //! radius over the median radius.
+  bool local_epsilon = true;
 };
 
 }  // namespace mcquad

@@ -1,8 +1,10 @@
 #include "evolution/evolve.h"
 
 #include <chrono>
+#include <memory>
 
 #include "core/progress.h"
+#include "evolution/crossing_guard.h"
 
 namespace mcquad {
 
@@ -23,10 +25,12 @@ device::mcq_step_params make_step_params(const EvolutionParameters& parameters, 
   params.relaxation = robust ? float(parameters.relaxation) : 0.0f;
   params.mean_projection = robust && parameters.mean_projection ? 1u : 0u;
   params.fill_holes = robust && parameters.fill_holes ? 1u : 0u;
+  params.own_cells = robust && parameters.own_cells ? 1u : 0u;
+  params.local_epsilon = robust && parameters.local_epsilon ? 1u : 0u;
   return params;
 }
 
-EvolutionResult evolve(EvolutionBackend& backend, const EvolutionParameters& parameters,
+EvolutionResult evolve(EvolutionBackend& backend, const MeshArrays& mesh, const EvolutionParameters& parameters,
                        const IterationCallback& after_iteration) {
   using Clock = std::chrono::steady_clock;
   EvolutionResult result;
@@ -34,13 +38,27 @@ EvolutionResult evolve(EvolutionBackend& backend, const EvolutionParameters& par
   result.stop_reason = "iteration limit";
   double previous = result.initial_error_level;
   Progress progress("evolving", parameters.iterations);
+  bool guard = parameters.mode == EvolutionParameters::Mode::kRobust && parameters.crossing_guard;
+  // The guard compares each step with the positions before it; they stay on
+  // the host between steps (12 bytes a vertex each way per iteration).
+  std::vector<float> before = guard ? backend.positions() : std::vector<float>();
+  std::unique_ptr<CrossingGuard> crossing_guard = guard ? std::make_unique<CrossingGuard>(mesh) : nullptr;
   for (unsigned i = 0; i < parameters.iterations; ++i) {
     auto start = Clock::now();
     backend.step(make_step_params(parameters, i));
     backend.finish();
-    auto stepped = Clock::now();
     IterationRecord record;
     record.iteration = i + 1;
+    if (guard) {
+      auto guarded = Clock::now();
+      std::vector<float> after = backend.positions();
+      record.reverted_vertices = crossing_guard->apply(before, after);
+      if (record.reverted_vertices > 0) backend.set_positions(after);
+      backend.finish();
+      before.swap(after);
+      record.guard_seconds = std::chrono::duration<double>(Clock::now() - guarded).count();
+    }
+    auto stepped = Clock::now();
     record.error_level = backend.error_level();
     auto end = Clock::now();
     record.step_seconds = std::chrono::duration<double>(stepped - start).count();

@@ -15,6 +15,8 @@ struct IterationRecord {
   double seconds = 0;       //!< wall time of the step, normals and error level
   double step_seconds = 0;  //!< of which the step and the normals
   double error_seconds = 0; //!< of which the error level
+  double guard_seconds = 0; //!< of which the crossing guard (robust mode)
+  size_t reverted_vertices = 0;  //!< vertices the crossing guard put back
 };
 
 struct EvolutionResult {
@@ -31,10 +33,11 @@ using IterationCallback = std::function<void(const IterationRecord&, EvolutionBa
 //! Step parameters of iteration `iteration` (0-based) for the shared code.
 device::mcq_step_params make_step_params(const EvolutionParameters& parameters, unsigned iteration);
 
-//! Runs the evolution on a loaded backend: up to `iterations` Jacobi steps,
-//! stopping early when the error level improves by less than `tolerance`
+//! Runs the evolution on a loaded backend (`mesh` is what it was loaded
+//! with): up to `iterations` Jacobi steps, each followed in robust mode by the
+//! crossing guard, stopping early when the error level improves by less than `tolerance`
 //! (relative) from one iteration to the next.
-EvolutionResult evolve(EvolutionBackend& backend, const EvolutionParameters& parameters,
+EvolutionResult evolve(EvolutionBackend& backend, const MeshArrays& mesh, const EvolutionParameters& parameters,
                        const IterationCallback& after_iteration = {});
 
 }  // namespace mcquad

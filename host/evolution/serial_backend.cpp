@@ -2,8 +2,9 @@
 
 namespace mcquad {
 
-void SerialBackend::load(const CellTree& cells, const MeshArrays& mesh) {
+void SerialBackend::load(const CellTree& cells, const MeshArrays& mesh, const SkeletonRegions& regions) {
   cells_ = &cells;
+  regions_ = &regions;
   mesh_ = mesh;
   positions_ = mesh.positions;
   next_positions_.resize(positions_.size());
@@ -31,6 +32,8 @@ void SerialBackend::relax(float weight) {
 
 void SerialBackend::step(const device::mcq_step_params& params) {
   if (params.relaxation > 0.0f) relax(params.relaxation);
+  device::mcq_regions regions{regions_->cell_bones.data(), regions_->vertex_bones.data(), regions_->vertex_scale.data(),
+                              regions_->visible_offsets.data(), regions_->visible_bones.data()};
   for (uint32_t v = 0; v < mesh_.vertex_count(); ++v) {
     uint32_t feasible;
     device::mcq_store3(next_positions_.data(), v,
@@ -38,10 +41,15 @@ void SerialBackend::step(const device::mcq_step_params& params) {
                                                  initial_normals_.data(), mesh_.faces.data(),
                                                  mesh_.vertex_face_offsets.data(), mesh_.vertex_faces.data(),
                                                  mesh_.boundary.data(), cells_->node_bounds.data(), cells_->node_children.data(),
-                                                 cells_->cell_offsets.data(), cells_->points.data(), v, params,
+                                                 cells_->cell_offsets.data(), cells_->points.data(), regions, v, params,
                                                  &feasible));
   }
   positions_.swap(next_positions_);
+  update_normals();
+}
+
+void SerialBackend::set_positions(const std::vector<float>& positions) {
+  positions_ = positions;
   update_normals();
 }
 

@@ -47,7 +47,7 @@ cl::Buffer OpenCLBackend::upload(const std::vector<T>& data, cl_mem_flags flags)
   return buffer;
 }
 
-void OpenCLBackend::load(const CellTree& cells, const MeshArrays& mesh) {
+void OpenCLBackend::load(const CellTree& cells, const MeshArrays& mesh, const SkeletonRegions& regions) {
   try {
     vertex_count_ = uint32_t(mesh.vertex_count());
     node_bounds_ = upload(cells.node_bounds);
@@ -60,6 +60,11 @@ void OpenCLBackend::load(const CellTree& cells, const MeshArrays& mesh) {
     vertex_face_offsets_ = upload(mesh.vertex_face_offsets);
     vertex_faces_ = upload(mesh.vertex_faces);
     boundary_ = upload(mesh.boundary);
+    cell_bones_ = upload(regions.cell_bones);
+    vertex_bones_ = upload(regions.vertex_bones);
+    vertex_scale_ = upload(regions.vertex_scale);
+    visible_offsets_ = upload(regions.visible_offsets);
+    visible_bones_ = upload(regions.visible_bones);
     positions_ = upload(mesh.positions, CL_MEM_READ_WRITE);
     initial_positions_ = upload(mesh.positions);
     initial_normals_ = cl::Buffer(context_, CL_MEM_READ_WRITE, std::max<size_t>(mesh.positions.size(), 1) * 4);
@@ -96,7 +101,7 @@ void OpenCLBackend::step(const device::mcq_step_params& params) {
     }
     set_kernel_args(evolve_kernel_, positions_, normals_, initial_positions_, initial_normals_, next_positions_, faces_,
                     vertex_face_offsets_, vertex_faces_, boundary_, node_bounds_, node_children_, cell_offsets_, points_,
-                    params, vertex_count_);
+                    cell_bones_, vertex_bones_, vertex_scale_, visible_offsets_, visible_bones_, params, vertex_count_);
     queue_.enqueueNDRangeKernel(evolve_kernel_, cl::NullRange, global_range(vertex_count_, kGroupSize), cl::NDRange(kGroupSize));
     std::swap(positions_, next_positions_);
     run_normals();
@@ -139,6 +144,15 @@ std::vector<float> OpenCLBackend::positions() {
     fail("reading the positions back", e);
   }
   return out;
+}
+
+void OpenCLBackend::set_positions(const std::vector<float>& positions) {
+  try {
+    if (!positions.empty()) queue_.enqueueWriteBuffer(positions_, CL_TRUE, 0, positions.size() * 4, positions.data());
+    run_normals();
+  } catch (const cl::Error& e) {
+    fail("writing the positions", e);
+  }
 }
 
 std::vector<float> OpenCLBackend::normals() {

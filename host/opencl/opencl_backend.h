@@ -14,12 +14,13 @@ class OpenCLBackend : public EvolutionBackend {
   explicit OpenCLBackend(const DeviceInfo& device);
   std::string name() const override { return "opencl"; }
   std::string device_name() const override { return device_.name + " (" + device_.platform + ")"; }
-  void load(const CellTree& cells, const MeshArrays& mesh) override;
+  void load(const CellTree& cells, const MeshArrays& mesh, const SkeletonRegions& regions) override;
   void step(const device::mcq_step_params& params) override;
   double error_level() override;
   void finish() override;
   std::vector<float> positions() override;
   std::vector<float> normals() override;
+  void set_positions(const std::vector<float>& positions) override;
 
   //! Queue and program for kernel unit tests.
   cl::CommandQueue& queue() { return queue_; }
@@ -42,6 +43,7 @@ class OpenCLBackend : public EvolutionBackend {
   cl::Buffer faces_, vertex_face_offsets_, vertex_faces_, boundary_;
   cl::Buffer positions_, next_positions_, normals_, errors_, partial_sums_, total_;
   cl::Buffer initial_positions_, initial_normals_;  //!< where the evolution started, for hole filling
+  cl::Buffer cell_bones_, vertex_bones_, vertex_scale_, visible_offsets_, visible_bones_;  //!< skeleton regions
   uint32_t vertex_count_ = 0;
   size_t reduce_groups_ = 0, reduce_group_size_ = 0;
 };

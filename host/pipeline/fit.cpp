@@ -141,7 +141,10 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
   if (options.evolve) {
     MeshArrays arrays = flatten_mesh(result.mesh);
     auto backend = timer.run("backend_setup", [&] { return make_backend(options.backend, options.device); });
-    timer.run("upload", [&] { backend->load(cells, arrays); return 0; });
+    SkeletonRegions regions = timer.run("regions", [&] {
+      return build_skeleton_regions(initial.skeleton, cells, arrays, median_radius);
+    });
+    timer.run("upload", [&] { backend->load(cells, arrays, regions); return 0; });
     IterationCallback snapshot;
     if (!options.snapshots_directory.empty()) {
       std::error_code ec;
@@ -155,12 +158,13 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
         write_mesh((std::filesystem::path(options.snapshots_directory) / name).string(), copy);
       };
     }
-    EvolutionResult evolution = timer.run("evolution", [&] { return evolve(*backend, parameters, snapshot); });
+    EvolutionResult evolution = timer.run("evolution", [&] { return evolve(*backend, arrays, parameters, snapshot); });
     set_positions(result.mesh, evolution.positions);
     nlohmann::json iterations = nlohmann::json::array();
     for (const auto& r : evolution.iterations)
       iterations.push_back({{"iteration", r.iteration}, {"error_level", r.error_level}, {"seconds", r.seconds},
-                            {"step_seconds", r.step_seconds}, {"error_seconds", r.error_seconds}});
+                            {"step_seconds", r.step_seconds}, {"error_seconds", r.error_seconds},
+                            {"guard_seconds", r.guard_seconds}, {"reverted_vertices", r.reverted_vertices}});
     report["backend"] = {{"name", backend->name()}, {"device", backend->device_name()}};
     report["evolution"] = {{"initial_error_level", evolution.initial_error_level},
                            {"iterations", iterations},

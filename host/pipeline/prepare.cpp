@@ -27,6 +27,7 @@ EvolutionSetup prepare_evolution(const SkeletonGraph& graph, const PointCloud& c
   setup.initial = build_initial_mesh(graph, setup.bones, cloud, options, source, &cloud_index);
   setup.cells = build_cell_tree(cloud, cell_leaf_size(leaf_size, cloud.size()));
   setup.arrays = flatten_mesh(setup.initial.mesh);
+  setup.regions = build_skeleton_regions(setup.initial.skeleton, setup.cells, setup.arrays, setup.median_radius);
   return setup;
 }
 

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "cells/cell_tree.h"
+#include "cells/skeleton_regions.h"
 #include "core/point_cloud.h"
 #include "core/point_index.h"
 #include "mesh/initial_mesh.h"
@@ -38,6 +39,7 @@ struct EvolutionSetup {
   InitialMesh initial;
   CellTree cells;
   MeshArrays arrays;
+  SkeletonRegions regions;
 };
 
 //! `leaf_size` as in cell_leaf_size (0: automatic).

@@ -7,6 +7,7 @@
 #include "core/errors.h"
 #include "core/point_index.h"
 #include "skeleton/acute_junctions.h"
+#include "skeleton/nearest_bone.h"
 
 namespace mcquad {
 namespace {
@@ -16,24 +17,6 @@ double median(std::vector<float>& values) {
   auto middle = values.begin() + values.size() / 2;
   std::nth_element(values.begin(), middle, values.end());
   return *middle;
-}
-
-//! Dense samples along every bone so a kd-tree finds the nearest bone fast.
-void sample_bones(const SkeletonGraph& graph, std::vector<Eigen::Vector3d>& samples, std::vector<int>& sample_bone) {
-  double total = 0;
-  for (const auto& e : graph.edges) total += (graph.positions[e[1]] - graph.positions[e[0]]).norm();
-  // Spacing fine enough to find the nearest bone's neighbourhood; the exact
-  // bone is then decided against the bones sharing its nodes.
-  double spacing = total / 2000.0;
-  for (size_t b = 0; b < graph.edges.size(); ++b) {
-    const auto& a = graph.positions[graph.edges[b][0]];
-    const auto& c = graph.positions[graph.edges[b][1]];
-    int steps = std::max(2, int(std::ceil((c - a).norm() / spacing)));
-    for (int k = 0; k <= steps; ++k) {
-      samples.push_back(a + (c - a) * (double(k) / steps));
-      sample_bone.push_back(int(b));
-    }
-  }
 }
 
 }  // namespace
@@ -48,19 +31,8 @@ double segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, cons
 
 BoneAssignment assign_points_to_bones(const SkeletonGraph& graph, const PointCloud& cloud, const std::string& source,
                                       const PointIndex<float>* cloud_index) {
-  std::vector<Eigen::Vector3d> samples;
-  std::vector<int> sample_bone;
-  sample_bones(graph, samples, sample_bone);
-  PointIndex<double> index(samples);
-
-  // Bones incident to each bone's end nodes: the nearest sample's bone is
-  // refined against its neighbours, where bones meet at an angle.
+  NearestBone nearest_bone(graph);
   size_t bone_count = graph.edges.size();
-  std::vector<std::vector<int>> node_bones(graph.node_count());
-  for (size_t b = 0; b < bone_count; ++b) {
-    node_bones[graph.edges[b][0]].push_back(int(b));
-    node_bones[graph.edges[b][1]].push_back(int(b));
-  }
 
   BoneAssignment result;
   size_t n = cloud.size();
@@ -69,23 +41,10 @@ BoneAssignment assign_points_to_bones(const SkeletonGraph& graph, const PointClo
   result.distance.resize(n);
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < long(n); ++i) {
-    Eigen::Vector3d p = cloud.points[i].cast<double>();
-    int first = sample_bone[index.nearest(p).first];
-    int best = first;
-    double best_t = 0, best_d = segment_distance(p, graph.positions[graph.edges[first][0]], graph.positions[graph.edges[first][1]], &best_t);
-    for (int end : graph.edges[first]) {
-      for (int b : node_bones[end]) {
-        double t, d = segment_distance(p, graph.positions[graph.edges[b][0]], graph.positions[graph.edges[b][1]], &t);
-        if (d < best_d) {
-          best = b;
-          best_d = d;
-          best_t = t;
-        }
-      }
-    }
-    result.bone[i] = best;
-    result.parameter[i] = float(best_t);
-    result.distance[i] = float(best_d);
+    NearestBone::Hit hit = nearest_bone.find(cloud.points[i].cast<double>());
+    result.bone[i] = hit.bone;
+    result.parameter[i] = float(hit.parameter);
+    result.distance[i] = float(hit.distance);
   }
 
   // A bone's radius: the median distance of its interior points (those that

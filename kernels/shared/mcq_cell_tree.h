@@ -10,6 +10,32 @@
 #ifndef MCQ_CELL_TREE_H
 #define MCQ_CELL_TREE_H
 
+/* Which cells a traversal may hit (robust mode's skeleton regions,
+ * host/cells/skeleton_regions.h): a cell is visible when its bone,
+ * cell_bones[cell], is among the `count` bones in `visible`; with count 0
+ * every cell is. */
+typedef struct {
+  const MCQ_GLOBAL mcq_uint* cell_bones;
+  const MCQ_GLOBAL mcq_uint* visible;
+  mcq_uint count;
+} mcq_cell_filter;
+
+MCQ_FN mcq_cell_filter mcq_no_cell_filter(void) {
+  mcq_cell_filter filter;
+  filter.cell_bones = 0;
+  filter.visible = 0;
+  filter.count = 0u;
+  return filter;
+}
+
+MCQ_FN int mcq_cell_is_visible(mcq_cell_filter filter, int cell) {
+  if (filter.count == 0u) return 1;
+  mcq_uint bone = filter.cell_bones[cell];
+  for (mcq_uint k = 0; k < filter.count; ++k)
+    if (filter.visible[k] == bone) return 1;
+  return 0;
+}
+
 /* Entry parameter of a half-line from the origin into the box [lo, hi]
  * (corners relative to the origin), or -1 when it misses; an origin inside
  * the box enters at 0. */
@@ -52,11 +78,13 @@ MCQ_FN int mcq_hit_is_better(float t, int cell, float best_t, int best_cell) {
   return (t >= 0.0f) & ((t < best_t) | ((t == best_t) & (cell < best_cell)));
 }
 
-/* The first cell whose box the half-line enters within `reach` (ties as in
- * mcq_hit_is_better), -1 when none; the entry distance goes to *entry. The
+/* The first visible cell whose box the half-line enters within `reach`
+ * (ties as in mcq_hit_is_better), -1 when none; invisible cells are passed
+ * through as if absent; the entry distance goes to *entry. The
  * reference for the packet traversal; tests compare the two. */
 MCQ_FN int mcq_first_cell_hit(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
-                              mcq_vec3 origin, mcq_vec3 dir, float reach, float* entry) {
+                              mcq_cell_filter filter, mcq_vec3 origin, mcq_vec3 dir, float reach,
+                              float* entry) {
   mcq_vec3 inv_dir = mcq_make_vec3(mcq_safe_inverse(dir.x), mcq_safe_inverse(dir.y), mcq_safe_inverse(dir.z));
   int stack_node[MCQ_STACK_SIZE];
   float stack_t[MCQ_STACK_SIZE];
@@ -76,7 +104,7 @@ MCQ_FN int mcq_first_cell_hit(const MCQ_GLOBAL float* node_bounds, const MCQ_GLO
     if (t > best_t) continue; /* equal entries may still hold a lower cell */
     int left = node_children[2 * node];
     if (left < 0) {
-      if (mcq_hit_is_better(t, -1 - left, best_t, best_cell)) {
+      if (mcq_hit_is_better(t, -1 - left, best_t, best_cell) && mcq_cell_is_visible(filter, -1 - left)) {
         best_t = t;
         best_cell = -1 - left;
       }
@@ -121,8 +149,8 @@ MCQ_FN int mcq_first_cell_hit(const MCQ_GLOBAL float* node_bounds, const MCQ_GLO
  * dir_x/y/z hold the directions; cells (-1: no hit) and entries receive the
  * results. */
 MCQ_FN void mcq_first_cell_hits(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
-                                mcq_vec3 origin, const float* dir_x, const float* dir_y, const float* dir_z,
-                                int count, float reach, int* cells, float* entries) {
+                                mcq_cell_filter filter, mcq_vec3 origin, const float* dir_x, const float* dir_y,
+                                const float* dir_z, int count, float reach, int* cells, float* entries) {
   float inv_x[MCQ_PACKET_SIZE], inv_y[MCQ_PACKET_SIZE], inv_z[MCQ_PACKET_SIZE];
   float mean_x = 0.0f, mean_y = 0.0f, mean_z = 0.0f;
   for (int r = 0; r < count; ++r) {
@@ -149,6 +177,7 @@ MCQ_FN void mcq_first_cell_hits(const MCQ_GLOBAL float* node_bounds, const MCQ_G
      * the rays, so they vectorize. */
     if (left < 0) {
       int cell = -1 - left;
+      if (!mcq_cell_is_visible(filter, cell)) continue;
       for (int r = 0; r < count; ++r) {
         float t = mcq_slab_entry(lo, hi, inv_x[r], inv_y[r], inv_z[r]);
         int better = mcq_hit_is_better(t, cell, entries[r], cells[r]);

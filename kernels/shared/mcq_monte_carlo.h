@@ -18,7 +18,30 @@ typedef struct {
   float relaxation;     /* weight of the tangential relaxation before the step; 0: none (the paper) */
   mcq_uint mean_projection; /* 1: a cell's d is the mean of its samples' projections; 0: their minimum (the paper) */
   mcq_uint fill_holes;  /* 1: a vertex no ray finds a feasible cell for takes its neighbours' offset */
+  mcq_uint own_cells;   /* 1: a vertex sees only the cells of the bones near its own (skeleton regions) */
+  mcq_uint local_epsilon; /* 1: epsilon and reach scale with the vertex's local radius (skeleton regions) */
 } mcq_step_params;
+
+/* Robust mode's skeleton regions, as laid out by host/cells/skeleton_regions.h. */
+typedef struct {
+  const MCQ_GLOBAL mcq_uint* cell_bones;
+  const MCQ_GLOBAL mcq_uint* vertex_bones;
+  const MCQ_GLOBAL float* vertex_scale;
+  const MCQ_GLOBAL mcq_uint* visible_offsets;
+  const MCQ_GLOBAL mcq_uint* visible_bones;
+} mcq_regions;
+
+/* The cells vertex v may hit: those of the bones near its own with
+ * params.own_cells, else all. */
+MCQ_FN mcq_cell_filter mcq_vertex_cell_filter(mcq_regions regions, mcq_uint v, mcq_step_params params) {
+  mcq_cell_filter filter = mcq_no_cell_filter();
+  if (!params.own_cells) return filter;
+  mcq_uint bone = regions.vertex_bones[v];
+  filter.cell_bones = regions.cell_bones;
+  filter.visible = regions.visible_bones + regions.visible_offsets[bone];
+  filter.count = regions.visible_offsets[bone + 1] - regions.visible_offsets[bone];
+  return filter;
+}
 
 /* Orthonormal frame (i', j', k' = n) of the paper's cones. The helper axis is
  * the world axis least parallel to n: the paper's fixed (1,0,0) degenerates
@@ -96,12 +119,16 @@ MCQ_FN float mcq_cell_distance(const MCQ_GLOBAL mcq_uint* cell_offsets, const MC
 
 /* The paper's displacement of one vertex along its normal: the mean of the
  * feasible minimal projections (|d| < epsilon) over all rays, 0 with none.
- * *feasible receives how many rays were feasible. */
+ * *feasible receives how many rays were feasible. Robust mode's regions
+ * limit the cells the rays see and scale epsilon and the reach. */
 MCQ_FN float mcq_vertex_displacement(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
                                      const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points,
-                                     mcq_vec3 q, mcq_vec3 n, mcq_uint vertex, mcq_step_params params,
-                                     mcq_uint* feasible) {
+                                     mcq_regions regions, mcq_vec3 q, mcq_vec3 n, mcq_uint vertex,
+                                     mcq_step_params params, mcq_uint* feasible) {
   *feasible = 0u;
+  mcq_cell_filter filter = mcq_vertex_cell_filter(regions, vertex, params);
+  float scale = params.local_epsilon ? regions.vertex_scale[vertex] : 1.0f;
+  float epsilon = params.epsilon * scale, reach = params.reach * scale;
   if (mcq_dot(n, n) == 0.0f) return 0.0f;
   mcq_vec3 i_axis, j_axis;
   mcq_cone_frame(n, &i_axis, &j_axis);
@@ -119,12 +146,12 @@ MCQ_FN float mcq_vertex_displacement(const MCQ_GLOBAL float* node_bounds, const 
       dir_y[k] = dir.y;
       dir_z[k] = dir.z;
     }
-    mcq_first_cell_hits(node_bounds, node_children, q, dir_x, dir_y, dir_z, count, params.reach, cells, entries);
+    mcq_first_cell_hits(node_bounds, node_children, filter, q, dir_x, dir_y, dir_z, count, reach, cells, entries);
     for (int k = 0; k < count; ++k) {
       if (cells[k] < 0) continue;
       mcq_vec3 dir = mcq_make_vec3(dir_x[k], dir_y[k], dir_z[k]);
       float d = mcq_cell_distance(cell_offsets, points, cells[k], q, dir, params, vertex, first + (mcq_uint)k);
-      if (MCQ_FABS(d) < params.epsilon) {
+      if (MCQ_FABS(d) < epsilon) {
         sum += d;
         *feasible += 1u;
       }
@@ -219,22 +246,41 @@ MCQ_FN mcq_vec3 mcq_hole_position(const MCQ_GLOBAL float* positions, const MCQ_G
   return mcq_add(mcq_load3(initial_positions, vertex), mcq_scale(mcq_load3(initial_normals, vertex), sum / count));
 }
 
+/* How much further than the reach the hole test looks along the normal. */
+#define MCQ_HOLE_PROBE 4.0f
+
+/* Whether a vertex that found no feasible cell sits in a hole of the scan:
+ * its normal leaves the cloud there, so nothing lies ahead even well past
+ * the reach. A vertex inside another tube (below a junction's crease, where
+ * the surface it would have had is swallowed by the union) finds that
+ * tube's far wall ahead instead; filling would push it through the crease. */
+MCQ_FN int mcq_in_hole(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children, mcq_regions regions,
+                       mcq_vec3 q, mcq_vec3 n, mcq_uint vertex, mcq_step_params params) {
+  float scale = params.local_epsilon ? regions.vertex_scale[vertex] : 1.0f;
+  float entry;
+  return mcq_first_cell_hit(node_bounds, node_children, mcq_vertex_cell_filter(regions, vertex, params), q, n,
+                            MCQ_HOLE_PROBE * params.reach * scale, &entry) < 0;
+}
+
 /* One vertex's new position: the paper's move along the normal, or in a
- * hole (no feasible ray, params.fill_holes, not on an open rim) the
- * neighbours' offset; either shortened by the fold guard when the step asks
- * for it. */
+ * hole (no feasible ray, params.fill_holes, not on an open rim, nothing
+ * ahead) the neighbours' offset; either shortened by the fold guard when
+ * the step asks for it. */
 MCQ_FN mcq_vec3 mcq_evolve_vertex(const MCQ_GLOBAL float* positions, const MCQ_GLOBAL float* normals,
                                   const MCQ_GLOBAL float* initial_positions, const MCQ_GLOBAL float* initial_normals,
                                   const MCQ_GLOBAL mcq_uint* faces, const MCQ_GLOBAL mcq_uint* vertex_face_offsets,
                                   const MCQ_GLOBAL mcq_uint* vertex_faces, const MCQ_GLOBAL mcq_uint* boundary,
                                   const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
                                   const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points,
-                                  mcq_uint vertex, mcq_step_params params, mcq_uint* feasible) {
+                                  mcq_regions regions, mcq_uint vertex, mcq_step_params params,
+                                  mcq_uint* feasible) {
   mcq_vec3 q = mcq_load3(positions, vertex);
   mcq_vec3 n = mcq_load3(normals, vertex);
-  float delta = mcq_vertex_displacement(node_bounds, node_children, cell_offsets, points, q, n, vertex, params, feasible);
+  float delta = mcq_vertex_displacement(node_bounds, node_children, cell_offsets, points, regions, q, n, vertex, params,
+                                        feasible);
   mcq_vec3 target = mcq_add(q, mcq_scale(n, delta));
-  int in_hole = *feasible == 0u && params.fill_holes && !boundary[vertex];
+  int in_hole = *feasible == 0u && params.fill_holes && !boundary[vertex] && mcq_dot(n, n) > 0.0f &&
+                mcq_in_hole(node_bounds, node_children, regions, q, n, vertex, params);
   if (in_hole)
     target = mcq_hole_position(positions, initial_positions, initial_normals, faces, vertex_face_offsets, vertex_faces,
                                vertex);

@@ -1,0 +1,90 @@
+#include "cells/skeleton_regions.h"
+
+#include <algorithm>
+#include <functional>
+#include <limits>
+#include <queue>
+
+#include "skeleton/nearest_bone.h"
+
+namespace mcquad {
+namespace {
+
+//! Bones within `limit` of bone `bone` along the graph, itself included:
+//! Dijkstra from both its ends, cut off at the limit.
+std::vector<uint32_t> bones_within(const SkeletonGraph& graph, const std::vector<std::vector<int>>& node_bones,
+                                   size_t bone, double limit) {
+  std::vector<double> distance(graph.node_count(), std::numeric_limits<double>::infinity());
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  for (int end : graph.edges[bone]) {
+    distance[size_t(end)] = 0;
+    queue.push({0.0, end});
+  }
+  std::vector<uint32_t> seen;
+  while (!queue.empty()) {
+    auto [d, node] = queue.top();
+    queue.pop();
+    if (d > distance[size_t(node)]) continue;
+    for (int b : node_bones[size_t(node)]) {
+      seen.push_back(uint32_t(b));
+      const auto& e = graph.edges[size_t(b)];
+      int other = e[0] == node ? e[1] : e[0];
+      double next = d + (graph.positions[size_t(other)] - graph.positions[size_t(node)]).norm();
+      if (next <= limit && next < distance[size_t(other)]) {
+        distance[size_t(other)] = next;
+        queue.push({next, other});
+      }
+    }
+  }
+  std::sort(seen.begin(), seen.end());
+  seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
+  return seen;
+}
+
+}  // namespace
+
+SkeletonRegions build_skeleton_regions(const TubeSkeleton& skeleton, const CellTree& cells, const MeshArrays& mesh,
+                                       double median_radius, double window) {
+  const SkeletonGraph& graph = skeleton.graph;
+  NearestBone nearest(graph);
+  SkeletonRegions regions;
+  regions.cell_bones.resize(cells.cell_count());
+#pragma omp parallel for schedule(static)
+  for (long c = 0; c < long(cells.cell_count()); ++c) {
+    const float* g = &cells.cell_centroids[3 * size_t(c)];
+    regions.cell_bones[size_t(c)] = uint32_t(nearest.find(Eigen::Vector3d(g[0], g[1], g[2])).bone);
+  }
+  size_t vertices = mesh.vertex_count();
+  regions.vertex_bones.resize(vertices);
+  regions.vertex_scale.resize(vertices);
+#pragma omp parallel for schedule(static)
+  for (long v = 0; v < long(vertices); ++v) {
+    const float* p = &mesh.positions[3 * size_t(v)];
+    int bone = nearest.find(Eigen::Vector3d(p[0], p[1], p[2])).bone;
+    regions.vertex_bones[size_t(v)] = uint32_t(bone);
+    regions.vertex_scale[size_t(v)] = median_radius > 0 ? float(skeleton.bone_radius[size_t(bone)] / median_radius) : 1.0f;
+  }
+  std::vector<std::vector<int>> node_bones(graph.node_count());
+  for (size_t b = 0; b < graph.edges.size(); ++b)
+    for (int end : graph.edges[b]) node_bones[size_t(end)].push_back(int(b));
+  regions.visible_offsets.push_back(0);
+  for (size_t b = 0; b < graph.edges.size(); ++b) {
+    std::vector<uint32_t> seen = bones_within(graph, node_bones, b, window * skeleton.bone_radius[b]);
+    regions.visible_bones.insert(regions.visible_bones.end(), seen.begin(), seen.end());
+    regions.visible_offsets.push_back(uint32_t(regions.visible_bones.size()));
+  }
+  return regions;
+}
+
+SkeletonRegions unrestricted_regions(size_t cell_count, size_t vertex_count) {
+  SkeletonRegions regions;
+  regions.cell_bones.assign(cell_count, 0);
+  regions.vertex_bones.assign(vertex_count, 0);
+  regions.vertex_scale.assign(vertex_count, 1.0f);
+  regions.visible_offsets = {0, 1};
+  regions.visible_bones = {0};
+  return regions;
+}
+
+}  // namespace mcquad

@@ -1,0 +1,126 @@
+#include "evolution/crossing_guard.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <map>
+
+#include "metrics/face_intersections.h"
+
+namespace mcquad {
+namespace {
+
+Eigen::Vector3d position(const std::vector<float>& positions, uint32_t v) {
+  return {positions[3 * size_t(v)], positions[3 * size_t(v) + 1], positions[3 * size_t(v) + 2]};
+}
+
+//! Unit normal of quad f: its diagonals' cross product, as the kernels use.
+Eigen::Vector3d face_normal(const MeshArrays& mesh, const std::vector<float>& positions, size_t f) {
+  const uint32_t* q = &mesh.faces[4 * f];
+  Eigen::Vector3d n = (position(positions, q[2]) - position(positions, q[0]))
+                          .cross(position(positions, q[3]) - position(positions, q[1]));
+  double length = n.norm();
+  return length > 0 ? Eigen::Vector3d(n / length) : n;
+}
+
+bool vertex_moved(const std::vector<float>& before, const std::vector<float>& after, uint32_t v) {
+  size_t i = 3 * size_t(v);
+  return before[i] != after[i] || before[i + 1] != after[i + 1] || before[i + 2] != after[i + 2];
+}
+
+}  // namespace
+
+CrossingGuard::CrossingGuard(const MeshArrays& mesh) : mesh_(mesh) {
+  std::map<std::pair<uint32_t, uint32_t>, int> edge_face;
+  for (size_t f = 0; f < mesh.face_count(); ++f)
+    for (size_t k = 0; k < 4; ++k) {
+      uint32_t a = mesh.faces[4 * f + k], b = mesh.faces[4 * f + (k + 1) % 4];
+      auto [it, inserted] = edge_face.emplace(std::minmax(a, b), int(f));
+      if (!inserted) adjacent_faces_.emplace_back(std::min(it->second, int(f)), std::max(it->second, int(f)));
+    }
+  std::sort(adjacent_faces_.begin(), adjacent_faces_.end());
+  for (size_t f = 0; f < mesh.face_count(); ++f) {
+    Eigen::Vector3d n = face_normal(mesh, mesh.positions, f);
+    initial_normals_.insert(initial_normals_.end(), {float(n.x()), float(n.y()), float(n.z())});
+  }
+  known_ = defects(mesh.positions);
+}
+
+std::vector<CrossingGuard::Defect> CrossingGuard::defects(const std::vector<float>& positions,
+                                                          const std::vector<char>* only_faces) const {
+  auto wanted = [&](int f) { return !only_faces || (*only_faces)[size_t(f)]; };
+  std::vector<Defect> found = intersecting_face_pairs(triangulate(mesh_.faces, positions), only_faces);
+  for (const auto& [a, b] : adjacent_faces_)
+    if ((wanted(a) || wanted(b)) &&
+        face_normal(mesh_, positions, size_t(a)).dot(face_normal(mesh_, positions, size_t(b))) < -0.5)
+      found.emplace_back(a, b);
+  for (size_t f = 0; f < mesh_.face_count(); ++f) {
+    if (!wanted(int(f))) continue;
+    Eigen::Vector3d start(initial_normals_[3 * f], initial_normals_[3 * f + 1], initial_normals_[3 * f + 2]);
+    if (face_normal(mesh_, positions, f).dot(start) < 0) found.emplace_back(int(f), -1);
+  }
+  std::sort(found.begin(), found.end());
+  found.erase(std::unique(found.begin(), found.end()), found.end());
+  return found;
+}
+
+size_t CrossingGuard::apply(const std::vector<float>& before, std::vector<float>& after) {
+  const std::vector<float> proposed = after;
+  // Per vertex, the fraction of its proposed step it takes.
+  std::vector<float> fraction(mesh_.vertex_count(), 1.0f);
+  size_t held_back = 0;
+  auto step_length = [&](int f) {  // the longest step a corner of face f takes
+    double longest = 0;
+    for (int k = 0; k < 4; ++k) {
+      uint32_t v = mesh_.faces[4 * size_t(f) + size_t(k)];
+      longest = std::max(longest, (position(after, v) - position(before, v)).squaredNorm());
+    }
+    return longest;
+  };
+  // The first round looks at every face; later ones only at the faces
+  // around vertices just held back (a defect elsewhere was ruled out).
+  std::vector<char> dirty(mesh_.face_count(), 1), changed(mesh_.face_count(), 0);
+  std::vector<Defect> found_first;
+  for (bool first = true;; first = false) {
+    std::vector<Defect> found = defects(after, first ? nullptr : &dirty);
+    if (first) found_first = found;
+    std::vector<Defect> fresh;
+    std::set_difference(found.begin(), found.end(), known_.begin(), known_.end(), std::back_inserter(fresh));
+    std::fill(dirty.begin(), dirty.end(), 0);
+    std::vector<uint32_t> shortened;
+    for (const auto& [a, b] : fresh) {
+      // Usually one face ran into the other: the one that moved further
+      // gives way; if that is not enough, the next round shortens again.
+      double la = step_length(a), lb = b >= 0 ? step_length(b) : 0.0;
+      for (int f : {a, b}) {
+        if (f < 0 || (f == a && la < lb) || (f == b && lb < la)) continue;
+        for (int k = 0; k < 4; ++k) {
+          uint32_t v = mesh_.faces[4 * size_t(f) + size_t(k)];
+          if (vertex_moved(before, after, v)) shortened.push_back(v);
+        }
+      }
+    }
+    if (shortened.empty()) break;
+    std::sort(shortened.begin(), shortened.end());
+    shortened.erase(std::unique(shortened.begin(), shortened.end()), shortened.end());
+    for (uint32_t v : shortened) {
+      held_back += fraction[v] == 1.0f;
+      fraction[v] = fraction[v] > 0.125f ? 0.5f * fraction[v] : 0.0f;
+      for (size_t i = 3 * size_t(v); i < 3 * size_t(v) + 3; ++i)
+        after[i] = fraction[v] > 0.0f ? before[i] + fraction[v] * (proposed[i] - before[i]) : before[i];
+      for (uint32_t j = mesh_.vertex_face_offsets[v]; j < mesh_.vertex_face_offsets[v + 1]; ++j)
+        dirty[mesh_.vertex_faces[j]] = changed[mesh_.vertex_faces[j]] = 1;
+    }
+  }
+  // The defects now: those of the first round away from the faces that
+  // changed since, and those around the changed faces anew.
+  known_.clear();
+  for (const Defect& d : found_first)
+    if (!changed[size_t(d.first)] && (d.second < 0 || !changed[size_t(d.second)])) known_.push_back(d);
+  std::vector<Defect> around_changes = defects(after, &changed);
+  known_.insert(known_.end(), around_changes.begin(), around_changes.end());
+  std::sort(known_.begin(), known_.end());
+  known_.erase(std::unique(known_.begin(), known_.end()), known_.end());
+  return held_back;
+}
+
+}  // namespace mcquad

@@ -1,0 +1,50 @@
+#pragma once
+
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "mesh/mesh_arrays.h"
+
+namespace mcquad {
+
+//! Robust mode's guard against self-intersection and inverted faces, run on
+//! the host after every step (docs/DESIGN.md). The per-vertex fold guard
+//! sees only a vertex's own faces for one step; faces that are not
+//! neighbours can still pass through each other (two sides of a crease
+//! moving into it, a vertex pulled across a thin neck), and small turns add
+//! up over steps. After a step the guard looks for new defects, by the same
+//! tests `mcquad metrics` counts:
+//!   - face pairs that cross (metrics/face_intersections.h);
+//!   - edges whose two faces fold over each other (normals more than 120
+//!     degrees apart);
+//!   - faces turned more than 90 degrees from where they started (into the
+//!     tube).
+//! Of a new crossing or fold, the face whose corners moved further gives way:
+//! its moved corners take half their step, then a quarter, an eighth, then
+//! none, until no new defect is left. So a mesh without defects keeps none,
+//! and vertices held back still move as far as they can. Defects already
+//! there before the step are left alone (and stay counted, not hidden).
+class CrossingGuard {
+ public:
+  //! `mesh` (topology and starting positions) must outlive the guard.
+  explicit CrossingGuard(const MeshArrays& mesh);
+
+  //! Shortens the moves from `before` to `after` (both as the mesh's
+  //! positions) as above; returns how many vertices were held back.
+  size_t apply(const std::vector<float>& before, std::vector<float>& after);
+
+  //! A defect: two faces (a < b), or one turned face (b = -1).
+  using Defect = std::pair<int, int>;
+  //! The defects of the mesh at `positions`, sorted; with `only_faces`,
+  //! those involving at least one of those faces.
+  std::vector<Defect> defects(const std::vector<float>& positions, const std::vector<char>* only_faces = nullptr) const;
+
+ private:
+  const MeshArrays& mesh_;
+  std::vector<std::pair<int, int>> adjacent_faces_;  //!< faces sharing an edge, a < b
+  std::vector<float> initial_normals_;               //!< per face, unit
+  std::vector<Defect> known_;                        //!< defects of the last accepted positions
+};
+
+}  // namespace mcquad
