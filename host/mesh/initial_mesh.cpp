@@ -167,19 +167,27 @@ class MeshAssembler {
     return length;
   }
 
-  //! Distance from `origin` along `direction` to the cloud, by sphere tracing
-  //! on the distance to the nearest cloud point less the sample spacing (the
-  //! sampled surface may lie that much nearer than its nearest sample).
+  //! Distance from `origin` along `direction` to the cloud: to the
+  //! projection on the ray of the first nearest point found within three
+  //! sample spacings of the ray (randomly sampled clouds have gaps of two
+  //! spacings and more that a tighter bound lets rays slip through). Sphere
+  //! tracing on the distance to the nearest point, stepping at least half a
+  //! spacing where that point lies beside the ray rather than on it (a ray
+  //! from a centre near a thin tube's wall still finds the wall across).
   //! Tracing stops once past `enough`: callers only need to know that much.
   double distance_to_cloud(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double enough) const {
+    const double near = 3.0 * spacing_, least_step = std::max(0.5 * spacing_, 1e-3 * enough);
     double t = 0;
-    for (int step = 0; step < 32 && t < enough; ++step) {
-      Eigen::Vector3f p = (origin + t * direction).cast<float>();
-      double gap = std::sqrt(double(cloud_index_.nearest(p).second)) - 2.0 * spacing_;
-      if (gap < std::max(0.02 * enough, 0.5 * spacing_)) break;
-      t += gap;
+    for (int step = 0; step < 512 && t < enough; ++step) {
+      Eigen::Vector3d p = origin + t * direction;
+      auto [nearest, d2] = cloud_index_.nearest(p.cast<float>());
+      double gap = std::sqrt(double(d2));
+      Eigen::Vector3d w = cloud_.points[size_t(nearest)].cast<double>() - origin;
+      double along = w.dot(direction);
+      if ((w - along * direction).norm() < near && along >= 0) return along;
+      t += std::max(gap - near, least_step);
     }
-    return t + 2.0 * spacing_;
+    return t;
   }
 
   //! Typical distance between neighbouring cloud points (median over a
@@ -304,14 +312,36 @@ class MeshAssembler {
                                    double twist) {
     std::array<int, kRing> ring;
     Eigen::Vector3d v = path.tangents[k].cross(u[k]);
+    std::array<Eigen::Vector3d, kRing> radial;
     for (int i = 0; i < kRing; ++i) {
       double angle = 2.0 * M_PI * i / kRing + twist;
-      Eigen::Vector3d radial = std::cos(angle) * u[k] + std::sin(angle) * v;
-      // Where the cloud is thinner than the bone's radius (tubes merging
-      // near a junction), the ring follows it at the same start fraction.
-      double reach = options_.start_fraction * distance_to_cloud(path.points[k], radial, radius / options_.start_fraction);
-      ring[i] = soup_.add_vertex(path.points[k] + std::min(radius, reach) * radial);
+      radial[size_t(i)] = std::cos(angle) * u[k] + std::sin(angle) * v;
     }
+    // Where the cloud is thinner than the bone's radius (tubes merging near
+    // a junction, a thin branch leaving a thick trunk), the ring follows it
+    // at the same start fraction, centred in the cloud's cross-section: the
+    // centre line's blend from a port can pass off a thin branch's axis, and
+    // a ring cut short on one side only would collapse against its wall.
+    Eigen::Vector3d centre = path.points[k];
+    std::array<double, kRing> distance;
+    double enough = radius / options_.start_fraction;
+    for (int pass = 0; pass < 3; ++pass) {
+      for (int i = 0; i < kRing; ++i) distance[size_t(i)] = distance_to_cloud(centre, radial[size_t(i)], 2.0 * enough);
+      if (*std::min_element(distance.begin(), distance.end()) >= enough || pass == 2) break;
+      // Opposite directions see the wall at R + d.r and R - d.r from a centre
+      // off by d; over the four pairs 45 degrees apart, their differences
+      // sum to twice d. Pairs with a side open (or a ray that slipped through
+      // a gap in the samples) say nothing.
+      Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+      for (int i = 0; i < kRing / 2; ++i) {
+        double a = distance[size_t(i)], b = distance[size_t(i + kRing / 2)];
+        if (a < 2.0 * enough && b < 2.0 * enough) offset += 0.25 * (a - b) * radial[size_t(i)];
+      }
+      if (offset.norm() > 0.5 * radius) offset *= 0.5 * radius / offset.norm();
+      centre += offset;
+    }
+    for (int i = 0; i < kRing; ++i)
+      ring[i] = soup_.add_vertex(centre + std::min(radius, options_.start_fraction * distance[size_t(i)]) * radial[size_t(i)]);
     return ring;
   }
 

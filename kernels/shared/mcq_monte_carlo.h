@@ -246,26 +246,10 @@ MCQ_FN mcq_vec3 mcq_hole_position(const MCQ_GLOBAL float* positions, const MCQ_G
   return mcq_add(mcq_load3(initial_positions, vertex), mcq_scale(mcq_load3(initial_normals, vertex), sum / count));
 }
 
-/* How much further than the reach the hole test looks along the normal. */
-#define MCQ_HOLE_PROBE 4.0f
-
-/* Whether a vertex that found no feasible cell sits in a hole of the scan:
- * its normal leaves the cloud there, so nothing lies ahead even well past
- * the reach. A vertex inside another tube (below a junction's crease, where
- * the surface it would have had is swallowed by the union) finds that
- * tube's far wall ahead instead; filling would push it through the crease. */
-MCQ_FN int mcq_in_hole(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children, mcq_regions regions,
-                       mcq_vec3 q, mcq_vec3 n, mcq_uint vertex, mcq_step_params params) {
-  float scale = params.local_epsilon ? regions.vertex_scale[vertex] : 1.0f;
-  float entry;
-  return mcq_first_cell_hit(node_bounds, node_children, mcq_vertex_cell_filter(regions, vertex, params), q, n,
-                            MCQ_HOLE_PROBE * params.reach * scale, &entry) < 0;
-}
-
 /* One vertex's new position: the paper's move along the normal, or in a
- * hole (no feasible ray, params.fill_holes, not on an open rim, nothing
- * ahead) the neighbours' offset; either shortened by the fold guard when
- * the step asks for it. */
+ * hole (no feasible ray, params.fill_holes, not on an open rim) the
+ * neighbours' offset; either shortened by the fold guard when the step asks
+ * for it. */
 MCQ_FN mcq_vec3 mcq_evolve_vertex(const MCQ_GLOBAL float* positions, const MCQ_GLOBAL float* normals,
                                   const MCQ_GLOBAL float* initial_positions, const MCQ_GLOBAL float* initial_normals,
                                   const MCQ_GLOBAL mcq_uint* faces, const MCQ_GLOBAL mcq_uint* vertex_face_offsets,
@@ -279,8 +263,7 @@ MCQ_FN mcq_vec3 mcq_evolve_vertex(const MCQ_GLOBAL float* positions, const MCQ_G
   float delta = mcq_vertex_displacement(node_bounds, node_children, cell_offsets, points, regions, q, n, vertex, params,
                                         feasible);
   mcq_vec3 target = mcq_add(q, mcq_scale(n, delta));
-  int in_hole = *feasible == 0u && params.fill_holes && !boundary[vertex] && mcq_dot(n, n) > 0.0f &&
-                mcq_in_hole(node_bounds, node_children, regions, q, n, vertex, params);
+  int in_hole = *feasible == 0u && params.fill_holes && !boundary[vertex];
   if (in_hole)
     target = mcq_hole_position(positions, initial_positions, initial_normals, faces, vertex_face_offsets, vertex_faces,
                                vertex);
