@@ -5,6 +5,7 @@
 #include <map>
 
 #include "metrics/face_intersections.h"
+#include "metrics/quad_shape.h"
 
 namespace mcquad {
 namespace {
@@ -20,6 +21,11 @@ Eigen::Vector3d face_normal(const MeshArrays& mesh, const std::vector<float>& po
                           .cross(position(positions, q[3]) - position(positions, q[1]));
   double length = n.norm();
   return length > 0 ? Eigen::Vector3d(n / length) : n;
+}
+
+//! Keeps the face pairs only (single faces have their floors instead).
+void drop_single_faces(std::vector<std::pair<int, int>>& defects) {
+  defects.erase(std::remove_if(defects.begin(), defects.end(), [](const auto& d) { return d.second < 0; }), defects.end());
 }
 
 bool vertex_moved(const std::vector<float>& before, const std::vector<float>& after, uint32_t v) {
@@ -42,7 +48,10 @@ CrossingGuard::CrossingGuard(const MeshArrays& mesh) : mesh_(mesh) {
     Eigen::Vector3d n = face_normal(mesh, mesh.positions, f);
     initial_normals_.insert(initial_normals_.end(), {float(n.x()), float(n.y()), float(n.z())});
   }
+  jacobian_floor_.assign(mesh.face_count(), -1.0);
+  raise_jacobian_floors(mesh.positions);
   known_ = defects(mesh.positions);
+  drop_single_faces(known_);
 }
 
 std::vector<CrossingGuard::Defect> CrossingGuard::defects(const std::vector<float>& positions,
@@ -56,11 +65,22 @@ std::vector<CrossingGuard::Defect> CrossingGuard::defects(const std::vector<floa
   for (size_t f = 0; f < mesh_.face_count(); ++f) {
     if (!wanted(int(f))) continue;
     Eigen::Vector3d start(initial_normals_[3 * f], initial_normals_[3 * f + 1], initial_normals_[3 * f + 2]);
-    if (face_normal(mesh_, positions, f).dot(start) < 0) found.emplace_back(int(f), -1);
+    Eigen::Vector3d corners[4];
+    for (size_t k = 0; k < 4; ++k) corners[k] = position(positions, mesh_.faces[4 * f + k]);
+    if (face_normal(mesh_, positions, f).dot(start) < 0 || scaled_jacobian(corners) < jacobian_floor_[f] - 1e-6)
+      found.emplace_back(int(f), -1);
   }
   std::sort(found.begin(), found.end());
   found.erase(std::unique(found.begin(), found.end()), found.end());
   return found;
+}
+
+void CrossingGuard::raise_jacobian_floors(const std::vector<float>& positions) {
+  for (size_t f = 0; f < mesh_.face_count(); ++f) {
+    Eigen::Vector3d corners[4];
+    for (size_t k = 0; k < 4; ++k) corners[k] = position(positions, mesh_.faces[4 * f + k]);
+    jacobian_floor_[f] = std::max(jacobian_floor_[f], std::min(kLeastScaledJacobian, scaled_jacobian(corners)));
+  }
 }
 
 size_t CrossingGuard::apply(const std::vector<float>& before, std::vector<float>& after) {
@@ -118,8 +138,10 @@ size_t CrossingGuard::apply(const std::vector<float>& before, std::vector<float>
     if (!changed[size_t(d.first)] && (d.second < 0 || !changed[size_t(d.second)])) known_.push_back(d);
   std::vector<Defect> around_changes = defects(after, &changed);
   known_.insert(known_.end(), around_changes.begin(), around_changes.end());
+  drop_single_faces(known_);
   std::sort(known_.begin(), known_.end());
   known_.erase(std::unique(known_.begin(), known_.end()), known_.end());
+  raise_jacobian_floors(after);
   return held_back;
 }
 

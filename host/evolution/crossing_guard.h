@@ -19,12 +19,15 @@ namespace mcquad {
 //!   - edges whose two faces fold over each other (normals more than 120
 //!     degrees apart);
 //!   - faces turned more than 90 degrees from where they started (into the
-//!     tube).
+//!     tube);
+//!   - quads whose scaled Jacobian falls below kLeastScaledJacobian, or below
+//!     the lowest value they have had when they started under it.
 //! Of a new crossing or fold, the face whose corners moved further gives way:
 //! its moved corners take half their step, then a quarter, an eighth, then
-//! none, until no new defect is left. So a mesh without defects keeps none,
-//! and vertices held back still move as far as they can. Defects already
-//! there before the step are left alone (and stay counted, not hidden).
+//! none, until no new defect is left; a turned or badly shaped quad gives
+//! way alone. So a mesh without defects keeps none, and vertices held back
+//! still move as far as they can. Crossings and folds already there before
+//! the step are left alone (and stay counted, not hidden).
 class CrossingGuard {
  public:
   //! `mesh` (topology and starting positions) must outlive the guard.
@@ -36,6 +39,9 @@ class CrossingGuard {
 
   //! A defect: two faces (a < b), or one turned face (b = -1).
   using Defect = std::pair<int, int>;
+  //! Quads whose worst corner falls below this scaled Jacobian count as
+  //! defects (metrics/quad_shape.h): a corner near 180 degrees or beyond.
+  static constexpr double kLeastScaledJacobian = 0.3;
   //! The defects of the mesh at `positions`, sorted; with `only_faces`,
   //! those involving at least one of those faces.
   std::vector<Defect> defects(const std::vector<float>& positions, const std::vector<char>* only_faces = nullptr) const;
@@ -44,7 +50,11 @@ class CrossingGuard {
   const MeshArrays& mesh_;
   std::vector<std::pair<int, int>> adjacent_faces_;  //!< faces sharing an edge, a < b
   std::vector<float> initial_normals_;               //!< per face, unit
-  std::vector<Defect> known_;                        //!< defects of the last accepted positions
+  std::vector<Defect> known_;                        //!< face pairs crossing or folded at the last accepted positions
+  std::vector<double> jacobian_floor_;               //!< per face: the least scaled Jacobian it may take
+
+  //! Floors rise with the quads, up to kLeastScaledJacobian.
+  void raise_jacobian_floors(const std::vector<float>& positions);
 };
 
 }  // namespace mcquad

@@ -18,6 +18,18 @@ double quantile(std::vector<double> values, double q) {
 
 }  // namespace
 
+double scaled_jacobian(const Eigen::Vector3d* c) {
+  Eigen::Vector3d normal = (c[2] - c[0]).cross(c[3] - c[1]);
+  if (normal.norm() > 0) normal.normalize();
+  double jacobian = 1;
+  for (size_t k = 0; k < 4; ++k) {
+    Eigen::Vector3d to_next = c[(k + 1) % 4] - c[k], to_previous = c[(k + 3) % 4] - c[k];
+    double lengths = to_next.norm() * to_previous.norm();
+    jacobian = std::min(jacobian, lengths > 0 ? to_next.cross(to_previous).dot(normal) / lengths : 0.0);
+  }
+  return jacobian;
+}
+
 QuadShape measure_quad_shape(const QuadMesh& mesh) {
   QuadShape shape;
   std::vector<double> jacobians, ratios;
@@ -25,14 +37,9 @@ QuadShape measure_quad_shape(const QuadMesh& mesh) {
   for (auto f : mesh.faces()) {
     std::vector<Eigen::Vector3d> c = face_corners(mesh, f);
     if (c.size() != 4) continue;
-    Eigen::Vector3d normal = quad_vector_area(c);
-    if (normal.norm() > 0) normal.normalize();
-    double jacobian = 1, shortest = INFINITY, longest = 0;
+    double jacobian = scaled_jacobian(c.data()), shortest = INFINITY, longest = 0;
     for (size_t k = 0; k < 4; ++k) {
       Eigen::Vector3d to_next = c[(k + 1) % 4] - c[k], to_previous = c[(k + 3) % 4] - c[k];
-      double lengths = to_next.norm() * to_previous.norm();
-      double sine = lengths > 0 ? to_next.cross(to_previous).dot(normal) / lengths : 0;
-      jacobian = std::min(jacobian, sine);
       double angle = std::atan2(to_next.cross(to_previous).norm(), to_next.dot(to_previous)) * 180 / M_PI;
       angle_min = std::min(angle_min, angle);
       angle_max = std::max(angle_max, angle);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
 #include "core/quad_mesh.h"
@@ -22,6 +23,9 @@ struct QuadShape {
 };
 
 QuadShape measure_quad_shape(const QuadMesh& mesh);
+
+//! The scaled Jacobian of one quad from its corners in order (as above).
+double scaled_jacobian(const Eigen::Vector3d* corners);
 
 nlohmann::json to_json(const QuadShape& shape);
 
