@@ -198,6 +198,8 @@ int run_metrics(const std::string& mesh_path, const std::string& points_path, co
     }
     TubeSurface surface = TubeSurface::from_json(description);
     metrics["true_surface"] = to_json(measure_true_surface_distance(mesh, surface));
+    metrics["true_surface"]["cloud_to_mesh_relative_to_local_radius"] =
+        to_json(cloud_to_mesh_relative_to_local_radius(mesh, cloud, surface));
   }
   if (!json_path.empty()) write_text_atomically(json_path, metrics.dump(2) + "\n");
   std::printf("%s\n", metrics.dump(2).c_str());

@@ -4,6 +4,7 @@
 #include "core/errors.h"
 #include "evolution/evolve.h"
 #include "evolution/serial_backend.h"
+#include "evolution_fixture.h"
 #include "helpers.h"
 #include "mesh/initial_mesh.h"
 #include "mesh/mesh_arrays.h"
@@ -20,51 +21,11 @@
 namespace mcquad {
 namespace {
 
-struct Fixture {
-  GeneratedShape shape;
-  SkeletonGraph graph;
-  EvolutionSetup setup;
-  const InitialMesh& initial = setup.initial;
-  const CellTree& cells = setup.cells;
-  const MeshArrays& arrays = setup.arrays;
-  const SkeletonRegions& regions = setup.regions;
-  EvolutionParameters parameters;
-  double radius = setup.median_radius;
+using test::Fixture;
+#ifdef MCQUAD_WITH_OPENCL
+using test::count_differing;
+#endif
 
-  explicit Fixture(const std::string& name, size_t points, ShapeOptions options = {})
-      : shape(test::small_shape(name, points, options)),
-        graph(build_skeleton_graph(shape.skeleton, name)),
-        setup(prepare_evolution(graph, shape.cloud, {}, FitOptions().leaf_size, name)) {
-    parameters.epsilon = automatic_epsilon(radius);
-  }
-
-  std::vector<double> true_surface_distances(const std::vector<float>& positions) const {
-    std::vector<double> out;
-    for (size_t v = 0; v < positions.size() / 3; ++v)
-      out.push_back(std::abs(shape.surface.signed_distance(Eigen::Vector3d(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]))));
-    return out;
-  }
-
-  //! Distances to the true surface relative to the local tube radius.
-  DistanceSummary relative_surface_distances(const std::vector<float>& positions) const {
-    std::vector<double> relative;
-    for (size_t v = 0; v < positions.size() / 3; ++v) {
-      Eigen::Vector3d x(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
-      relative.push_back(std::abs(shape.surface.signed_distance(x)) /
-                         shape.surface.capsules()[shape.surface.nearest_capsule(x)].radius);
-    }
-    return summarize_distances(relative);
-  }
-
-  //! Final positions of a serial evolution in `mode`, the rest as in `parameters`.
-  std::vector<float> evolve_serially(EvolutionParameters::Mode mode) const {
-    SerialBackend backend;
-    backend.load(cells, arrays, regions);
-    EvolutionParameters p = parameters;
-    p.mode = mode;
-    return evolve(backend, arrays, p).positions;
-  }
-};
 
 //! Issue 4's quality bar, at the paper's parameters and the default cells:
 //! mean distance to the true surface at most 1 % of the tube radius, 95th
@@ -171,32 +132,6 @@ TEST(RobustMode, HolesInTheScanAreSpanned) {
 }
 
 #ifdef MCQUAD_WITH_OPENCL
-std::unique_ptr<OpenCLBackend> opencl_or_skip() {
-  auto devices = list_devices();
-  if (devices.empty()) {
-    if (test::opencl_required()) ADD_FAILURE() << "no OpenCL device, and CI requires one (install pocl-opencl-icd)";
-    return nullptr;
-  }
-  return std::make_unique<OpenCLBackend>(select_device(""));
-}
-
-//! Vertices whose positions differ by more than `tolerance` in a coordinate.
-size_t count_differing(const std::vector<float>& a, const std::vector<float>& b, float tolerance) {
-  size_t differing = 0;
-  for (size_t v = 0; v < a.size() / 3; ++v) {
-    float d = 0;
-    for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(a[3 * v + k] - b[3 * v + k]));
-    differing += d > tolerance;
-  }
-  return differing;
-}
-
-#define REQUIRE_OPENCL(backend)                                  \
-  auto backend = opencl_or_skip();                               \
-  if (!backend) {                                                \
-    if (!test::opencl_required()) GTEST_SKIP() << "no OpenCL device"; \
-    return;                                                      \
-  }
 
 //! Loads both backends from the same state, checks their initial normals
 //! agree, runs one step with `parameters` on each and returns how many

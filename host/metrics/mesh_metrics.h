@@ -73,6 +73,12 @@ struct TrueSurfaceDistance {
 };
 TrueSurfaceDistance measure_true_surface_distance(const QuadMesh& mesh, const TubeSurface& surface);
 
+//! Distances of the cloud points to the mesh relative to their local tube
+//! radius (the nearest capsule's): issue 6's coverage, "95 % of the points
+//! within 5 % of the local radius", where radii differ along the shape.
+DistanceSummary cloud_to_mesh_relative_to_local_radius(const QuadMesh& mesh, const PointCloud& cloud,
+                                                       const TubeSurface& surface);
+
 nlohmann::json to_json(const TrueSurfaceDistance& distance);
 nlohmann::json to_json(const MeshStatistics& statistics);
 nlohmann::json to_json(const QualityMetrics& metrics);

@@ -1,0 +1,98 @@
+#pragma once
+
+// What the evolution tests share: a generated shape prepared for evolving,
+// and the OpenCL backend where one is found.
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "evolution/evolve.h"
+#include "evolution/serial_backend.h"
+#include "helpers.h"
+#include "metrics/surface_distance.h"
+#include "pipeline/fit.h"
+#include "pipeline/prepare.h"
+#ifdef MCQUAD_WITH_OPENCL
+#include "opencl/device_selection.h"
+#include "opencl/opencl_backend.h"
+#endif
+
+namespace mcquad::test {
+
+//! A generated shape with everything the evolution starts from.
+struct Fixture {
+  GeneratedShape shape;
+  SkeletonGraph graph;
+  EvolutionSetup setup;
+  const InitialMesh& initial = setup.initial;
+  const CellTree& cells = setup.cells;
+  const MeshArrays& arrays = setup.arrays;
+  const SkeletonRegions& regions = setup.regions;
+  EvolutionParameters parameters;
+  double radius = setup.median_radius;
+
+  explicit Fixture(const std::string& name, size_t points, ShapeOptions options = {})
+      : shape(test::small_shape(name, points, options)),
+        graph(build_skeleton_graph(shape.skeleton, name)),
+        setup(prepare_evolution(graph, shape.cloud, {}, FitOptions().leaf_size, name)) {
+    parameters.epsilon = automatic_epsilon(radius);
+  }
+
+  std::vector<double> true_surface_distances(const std::vector<float>& positions) const {
+    std::vector<double> out;
+    for (size_t v = 0; v < positions.size() / 3; ++v)
+      out.push_back(std::abs(shape.surface.signed_distance(Eigen::Vector3d(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]))));
+    return out;
+  }
+
+  //! Distances to the true surface relative to the local tube radius.
+  DistanceSummary relative_surface_distances(const std::vector<float>& positions) const {
+    std::vector<double> relative;
+    for (size_t v = 0; v < positions.size() / 3; ++v) {
+      Eigen::Vector3d x(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
+      relative.push_back(std::abs(shape.surface.signed_distance(x)) /
+                         shape.surface.capsules()[shape.surface.nearest_capsule(x)].radius);
+    }
+    return summarize_distances(relative);
+  }
+
+  //! Final positions of a serial evolution in `mode`, the rest as in `parameters`.
+  std::vector<float> evolve_serially(EvolutionParameters::Mode mode) const {
+    SerialBackend backend;
+    backend.load(cells, arrays, regions);
+    EvolutionParameters p = parameters;
+    p.mode = mode;
+    return evolve(backend, arrays, p).positions;
+  }
+};
+
+#ifdef MCQUAD_WITH_OPENCL
+inline std::unique_ptr<OpenCLBackend> opencl_or_skip() {
+  auto devices = list_devices();
+  if (devices.empty()) {
+    if (opencl_required()) ADD_FAILURE() << "no OpenCL device, and CI requires one (install pocl-opencl-icd)";
+    return nullptr;
+  }
+  return std::make_unique<OpenCLBackend>(select_device(""));
+}
+
+//! Vertices whose positions differ by more than `tolerance` in a coordinate.
+inline size_t count_differing(const std::vector<float>& a, const std::vector<float>& b, float tolerance) {
+  size_t differing = 0;
+  for (size_t v = 0; v < a.size() / 3; ++v) {
+    float d = 0;
+    for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(a[3 * v + k] - b[3 * v + k]));
+    differing += d > tolerance;
+  }
+  return differing;
+}
+
+#define REQUIRE_OPENCL(backend)                                  \
+  auto backend = ::mcquad::test::opencl_or_skip();                             \
+  if (!backend) {                                                \
+    if (!::mcquad::test::opencl_required()) GTEST_SKIP() << "no OpenCL device"; \
+    return;                                                      \
+  }
+#endif
+
+}  // namespace mcquad::test

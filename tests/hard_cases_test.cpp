@@ -1,0 +1,108 @@
+// Issue 6's hard cases in robust mode (the default): what holds on each,
+// measured the way `mcquad metrics` does. docs/HARD_CASES.md has the full
+// table beside the paper's mode, and what does not hold yet.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "evolution_fixture.h"
+#include "metrics/face_intersections.h"
+#include "metrics/mesh_metrics.h"
+
+namespace mcquad {
+namespace {
+
+struct HardCase {
+  const char* label;
+  const char* shape;
+  ShapeOptions options;
+  //! Whether 95 % of the cloud lies within 5 % of the local radius plus
+  //! 1.96 sigma of the mesh. Not yet on the Ys (5.2 % at 30 degrees), the
+  //! thin branch and 10 % noise (docs/HARD_CASES.md says why).
+  bool covered;
+};
+
+ShapeOptions with(double angle = 60, double noise = 0, double outliers = 0, double density_ratio = 1, int holes = 0) {
+  ShapeOptions o;
+  o.angle_degrees = angle;
+  o.noise = noise;
+  o.outliers = outliers;
+  o.density_ratio = density_ratio;
+  o.holes = holes;
+  return o;
+}
+
+const HardCase kCases[] = {
+    {"y_fork_30", "y-fork", with(30), false},
+    {"y_fork_15", "y-fork", with(15), false},
+    {"tight_knot", "tight-knot", with(), true},
+    {"parallel_tubes", "parallel-tubes", with(), true},
+    {"thin_branch", "thin-branch", with(), false},
+    {"noise_2", "t-shape", with(60, 0.02), true},
+    {"noise_5", "t-shape", with(60, 0.05), true},
+    {"noise_10", "t-shape", with(60, 0.10), false},
+    {"outliers", "t-shape", with(60, 0, 0.01), true},
+    {"density_10", "t-shape", with(60, 0, 0, 10), true},
+    {"holes", "t-shape", with(60, 0, 0, 1, 3), true},
+};
+
+struct Measured {
+  size_t crossing = 0, folded = 0;
+  double least_jacobian = 1, coverage_p95 = 0;
+};
+
+Measured measure(const test::Fixture& f, const std::vector<float>& positions) {
+  QuadMesh mesh = f.initial.mesh;
+  set_positions(mesh, positions);
+  Measured m;
+  m.crossing = intersecting_face_pairs(mesh).size();
+  m.folded = folded_edges(mesh);
+  m.least_jacobian = measure_quad_shape(mesh).min_scaled_jacobian;
+  m.coverage_p95 = cloud_to_mesh_relative_to_local_radius(mesh, f.shape.cloud, f.shape.surface).p95;
+  return m;
+}
+
+class HardCases : public ::testing::TestWithParam<HardCase> {};
+
+//! No face pair crosses or folds that did not already in the initial mesh,
+//! every quad keeps a scaled Jacobian of at least 0.3 (or what it started
+//! with), and the cloud is covered.
+TEST_P(HardCases, RobustModeKeepsTheMeshValidAndCoversTheCloud) {
+  const HardCase& c = GetParam();
+  test::Fixture f(c.shape, 40000, c.options);
+  Measured start = measure(f, f.arrays.positions);
+  Measured end = measure(f, f.evolve_serially(EvolutionParameters::Mode::kRobust));
+  EXPECT_LE(end.crossing, start.crossing);
+  if (start.crossing == 0) {
+    EXPECT_EQ(end.crossing, 0u);
+  }
+  EXPECT_LE(end.folded, start.folded);
+  EXPECT_GE(end.least_jacobian, std::min(0.3, start.least_jacobian) - 1e-3);
+  if (c.covered) {
+    EXPECT_LE(end.coverage_p95, 0.05 + 1.96 * c.options.noise);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Issue6, HardCases, ::testing::ValuesIn(kCases),
+                         [](const auto& test_info) { return std::string(test_info.param.label); });
+
+#ifdef MCQUAD_WITH_OPENCL
+//! The guard and the skeleton regions run the same on the device: robust
+//! mode on hard cases gives the serial path's mesh.
+TEST(OpenCLParity, RobustModeOnHardCasesMatchesTheSerialPath) {
+  REQUIRE_OPENCL(opencl);
+  for (const HardCase& c : {kCases[0], kCases[4]}) {
+    test::Fixture f(c.shape, 30000, c.options);
+    SerialBackend serial;
+    serial.load(f.cells, f.arrays, f.regions);
+    opencl->load(f.cells, f.arrays, f.regions);
+    std::vector<float> a = evolve(serial, f.arrays, f.parameters).positions;
+    std::vector<float> b = evolve(*opencl, f.arrays, f.parameters).positions;
+    EXPECT_LE(test::count_differing(a, b, 1e-3f * float(f.radius)), a.size() / 3 / 50) << c.label;
+    EXPECT_EQ(measure(f, b).crossing, measure(f, a).crossing) << c.label;
+  }
+}
+#endif
+
+}  // namespace
+}  // namespace mcquad
