@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "cells/cell_tree.h"
+#include "evolution/crossing_guard.h"
 #include "evolution/evolve.h"
 #include "evolution/serial_backend.h"
 #include "generate/shapes.h"
@@ -157,6 +158,23 @@ void BM_ErrorLevel(benchmark::State& state) {
   state.SetLabel(backend->name());
 }
 
+//! Robust mode's crossing guard after one step on the knot's mesh (the
+//! first step, where every vertex moves furthest); items are faces.
+void BM_CrossingGuard(benchmark::State& state) {
+  Prepared& p = prepared(kPaperPoints, size_t(state.range(0)));
+  SerialBackend backend;
+  backend.load(p.setup.cells, p.setup.arrays, p.setup.regions);
+  backend.step(make_step_params(p.parameters, 0));
+  const std::vector<float> moved = backend.positions();
+  CrossingGuard guard(p.setup.arrays);
+  for (auto _ : state) {
+    std::vector<float> after = moved;
+    benchmark::DoNotOptimize(guard.apply(p.setup.arrays.positions, after));
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(p.setup.arrays.face_count()));
+  state.SetLabel(std::to_string(p.setup.arrays.face_count()) + " faces");
+}
+
 void BM_Metrics(benchmark::State& state) {
   Prepared& p = prepared(kPaperPoints, 0);
   for (auto _ : state) benchmark::DoNotOptimize(measure_quality(p.setup.initial.mesh, p.cloud, p.setup.cells, &p.graph));
@@ -186,6 +204,7 @@ BENCHMARK(BM_Step)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ErrorLevel)->ArgsProduct({{0, 1}, {413696}, {0, 30000}})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CrossingGuard)->Arg(0)->Arg(30000)->Arg(120000)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Metrics)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WriteMesh)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

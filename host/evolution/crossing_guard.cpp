@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <map>
+#include <numeric>
 
 #include "metrics/face_intersections.h"
 #include "metrics/quad_shape.h"
@@ -49,6 +50,8 @@ CrossingGuard::CrossingGuard(const MeshArrays& mesh) : mesh_(mesh) {
     initial_normals_.insert(initial_normals_.end(), {float(n.x()), float(n.y()), float(n.z())});
   }
   jacobian_floor_.assign(mesh.face_count(), -1.0);
+  low_faces_.resize(mesh.face_count());
+  std::iota(low_faces_.begin(), low_faces_.end(), 0u);
   raise_jacobian_floors(mesh.positions);
   known_ = defects(mesh.positions);
   drop_single_faces(known_);
@@ -76,11 +79,14 @@ std::vector<CrossingGuard::Defect> CrossingGuard::defects(const std::vector<floa
 }
 
 void CrossingGuard::raise_jacobian_floors(const std::vector<float>& positions) {
-  for (size_t f = 0; f < mesh_.face_count(); ++f) {
+  std::vector<uint32_t> still_low;
+  for (uint32_t f : low_faces_) {
     Eigen::Vector3d corners[4];
-    for (size_t k = 0; k < 4; ++k) corners[k] = position(positions, mesh_.faces[4 * f + k]);
+    for (size_t k = 0; k < 4; ++k) corners[k] = position(positions, mesh_.faces[4 * size_t(f) + k]);
     jacobian_floor_[f] = std::max(jacobian_floor_[f], std::min(kLeastScaledJacobian, scaled_jacobian(corners)));
+    if (jacobian_floor_[f] < kLeastScaledJacobian) still_low.push_back(f);
   }
+  low_faces_.swap(still_low);
 }
 
 size_t CrossingGuard::apply(const std::vector<float>& before, std::vector<float>& after) {
@@ -136,8 +142,10 @@ size_t CrossingGuard::apply(const std::vector<float>& before, std::vector<float>
   known_.clear();
   for (const Defect& d : found_first)
     if (!changed[size_t(d.first)] && (d.second < 0 || !changed[size_t(d.second)])) known_.push_back(d);
-  std::vector<Defect> around_changes = defects(after, &changed);
-  known_.insert(known_.end(), around_changes.begin(), around_changes.end());
+  if (held_back > 0) {
+    std::vector<Defect> around_changes = defects(after, &changed);
+    known_.insert(known_.end(), around_changes.begin(), around_changes.end());
+  }
   drop_single_faces(known_);
   std::sort(known_.begin(), known_.end());
   known_.erase(std::unique(known_.begin(), known_.end()), known_.end());

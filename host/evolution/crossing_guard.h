@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -52,6 +53,7 @@ class CrossingGuard {
   std::vector<float> initial_normals_;               //!< per face, unit
   std::vector<Defect> known_;                        //!< face pairs crossing or folded at the last accepted positions
   std::vector<double> jacobian_floor_;               //!< per face: the least scaled Jacobian it may take
+  std::vector<uint32_t> low_faces_;                  //!< faces whose floor is still under kLeastScaledJacobian
 
   //! Floors rise with the quads, up to kLeastScaledJacobian.
   void raise_jacobian_floors(const std::vector<float>& positions);

@@ -25,7 +25,21 @@ bool segment_hits_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, c
 
 }  // namespace
 
+namespace {
+
+//! Whether all corners of triangle t lie strictly on one side of the plane
+//! of triangle p: then they cannot meet (the cheap rejection that most
+//! neighbouring pairs on a smooth surface take).
+bool strictly_one_side(const Eigen::Vector3d* p, const Eigen::Vector3d* t) {
+  Eigen::Vector3d normal = (p[1] - p[0]).cross(p[2] - p[0]);
+  double d0 = normal.dot(t[0] - p[0]), d1 = normal.dot(t[1] - p[0]), d2 = normal.dot(t[2] - p[0]);
+  return (d0 > 0 && d1 > 0 && d2 > 0) || (d0 < 0 && d1 < 0 && d2 < 0);
+}
+
+}  // namespace
+
 bool triangles_intersect(const Eigen::Vector3d* a, const Eigen::Vector3d* b) {
+  if (strictly_one_side(a, b) || strictly_one_side(b, a)) return false;
   for (int k = 0; k < 3; ++k) {
     if (segment_hits_triangle(a[k], a[(k + 1) % 3], b)) return true;
     if (segment_hits_triangle(b[k], b[(k + 1) % 3], a)) return true;
@@ -131,7 +145,7 @@ std::vector<std::pair<int, int>> intersecting_face_pairs(const MeshTriangles& tr
   // the edge lengths (a cell of the longest edge puts thousands of small
   // triangles together next to one long one).
   constexpr int kBits = 21;
-  double cell = std::max({2.0 * extent / double(n), (high - low).maxCoeff() / double((1 << kBits) - 2), 1e-12});
+  double cell = std::max({3.0 * extent / double(n), (high - low).maxCoeff() / double((1 << kBits) - 2), 1e-12});
   auto cell_of = [&](const Eigen::Vector3d& p) {
     Eigen::Vector3d c = ((p - low) / cell).cwiseMax(0.0);
     return Eigen::Matrix<uint64_t, 3, 1>(uint64_t(c.x()), uint64_t(c.y()), uint64_t(c.z()));
@@ -153,6 +167,10 @@ std::vector<std::pair<int, int>> intersecting_face_pairs(const MeshTriangles& tr
     std::sort(wanted_cells.begin(), wanted_cells.end());
     wanted_cells.erase(std::unique(wanted_cells.begin(), wanted_cells.end()), wanted_cells.end());
   }
+  // The cell of each box's low corner: the cell of two boxes' overlap's low
+  // corner is their componentwise maximum (cells are monotone per axis).
+  std::vector<Eigen::Matrix<uint64_t, 3, 1>> low_cell(n);
+  for (size_t t = 0; t < n; ++t) low_cell[t] = cell_of(lo[t]);
   std::vector<std::pair<uint64_t, uint32_t>> entries;
   entries.reserve(only_faces ? 8 * wanted_cells.size() : 2 * n);
   for (size_t t = 0; t < n; ++t)
@@ -171,18 +189,23 @@ std::vector<std::pair<int, int>> intersecting_face_pairs(const MeshTriangles& tr
   {
     std::vector<std::pair<int, int>> found;
     long cells = long(runs.size()) - 1;
+    std::vector<uint32_t> in_cell;
 #pragma omp for schedule(dynamic, 64)
     for (long r = 0; r < cells; ++r) {
       uint64_t here = entries[runs[size_t(r)]].first;
-      for (size_t m = runs[size_t(r)]; m < runs[size_t(r) + 1]; ++m)
-        for (size_t k = m + 1; k < runs[size_t(r) + 1]; ++k) {
-          uint32_t a = entries[m].second, b = entries[k].second;
+      // Sweep along x within the cell: only boxes overlapping in x pair up.
+      in_cell.clear();
+      for (size_t m = runs[size_t(r)]; m < runs[size_t(r) + 1]; ++m) in_cell.push_back(entries[m].second);
+      std::sort(in_cell.begin(), in_cell.end(), [&](uint32_t a, uint32_t b) { return lo[a].x() < lo[b].x(); });
+      for (size_t m = 0; m < in_cell.size(); ++m)
+        for (size_t k = m + 1; k < in_cell.size() && lo[in_cell[k]].x() <= hi[in_cell[m]].x(); ++k) {
+          uint32_t a = in_cell[m], b = in_cell[k];
           int fa = triangles.face[a], fb = triangles.face[b];
           if (fa == fb || (only_faces && !(*only_faces)[size_t(fa)] && !(*only_faces)[size_t(fb)])) continue;
           // A pair of boxes overlaps in several cells; it is tested in the
           // one holding the low corner of the overlap.
           if ((lo[a].cwiseMax(lo[b]).array() > hi[a].cwiseMin(hi[b]).array()).any()) continue;
-          if (key(cell_of(lo[a].cwiseMax(lo[b]))) != here) continue;
+          if (key(low_cell[a].cwiseMax(low_cell[b])) != here) continue;
           if (triangle_pair_intersects(triangles, a, b)) found.emplace_back(std::min(fa, fb), std::max(fa, fb));
         }
     }
