@@ -2,7 +2,6 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <map>
 #include <numeric>
 
 #include "metrics/face_intersections.h"
@@ -37,12 +36,17 @@ bool vertex_moved(const std::vector<float>& before, const std::vector<float>& af
 }  // namespace
 
 CrossingGuard::CrossingGuard(const MeshArrays& mesh) : mesh_(mesh) {
-  std::map<std::pair<uint32_t, uint32_t>, int> edge_face;
+  // Faces across each edge, from the vertex-face lists (no map of edges: at
+  // millions of faces that would cost more than the mesh).
   for (size_t f = 0; f < mesh.face_count(); ++f)
     for (size_t k = 0; k < 4; ++k) {
       uint32_t a = mesh.faces[4 * f + k], b = mesh.faces[4 * f + (k + 1) % 4];
-      auto [it, inserted] = edge_face.emplace(std::minmax(a, b), int(f));
-      if (!inserted) adjacent_faces_.emplace_back(std::min(it->second, int(f)), std::max(it->second, int(f)));
+      for (uint32_t j = mesh.vertex_face_offsets[a]; j < mesh.vertex_face_offsets[a + 1]; ++j) {
+        uint32_t g = mesh.vertex_faces[j];
+        if (g <= f) continue;  // each pair once, from its lower face
+        const uint32_t* q = &mesh.faces[4 * size_t(g)];
+        if (std::find(q, q + 4, b) != q + 4) adjacent_faces_.emplace_back(int(f), int(g));
+      }
     }
   std::sort(adjacent_faces_.begin(), adjacent_faces_.end());
   for (size_t f = 0; f < mesh.face_count(); ++f) {
@@ -61,18 +65,24 @@ std::vector<CrossingGuard::Defect> CrossingGuard::defects(const std::vector<floa
                                                           const std::vector<char>* only_faces) const {
   auto wanted = [&](int f) { return !only_faces || (*only_faces)[size_t(f)]; };
   std::vector<Defect> found = intersecting_face_pairs(triangulate(mesh_.faces, positions), only_faces);
-  for (const auto& [a, b] : adjacent_faces_)
-    if ((wanted(a) || wanted(b)) &&
-        face_normal(mesh_, positions, size_t(a)).dot(face_normal(mesh_, positions, size_t(b))) < -0.5)
-      found.emplace_back(a, b);
-  for (size_t f = 0; f < mesh_.face_count(); ++f) {
+  // Per face, once: its normal, and whether it turned over or lost shape.
+  long faces = long(mesh_.face_count());
+  std::vector<Eigen::Vector3d> normal(static_cast<size_t>(faces));
+  std::vector<char> bad(static_cast<size_t>(faces), 0);
+#pragma omp parallel for schedule(static) if (faces > 4096)
+  for (long f = 0; f < faces; ++f) {
+    size_t i = size_t(f);
+    normal[i] = face_normal(mesh_, positions, i);
     if (!wanted(int(f))) continue;
-    Eigen::Vector3d start(initial_normals_[3 * f], initial_normals_[3 * f + 1], initial_normals_[3 * f + 2]);
+    Eigen::Vector3d start(initial_normals_[3 * i], initial_normals_[3 * i + 1], initial_normals_[3 * i + 2]);
     Eigen::Vector3d corners[4];
-    for (size_t k = 0; k < 4; ++k) corners[k] = position(positions, mesh_.faces[4 * f + k]);
-    if (face_normal(mesh_, positions, f).dot(start) < 0 || scaled_jacobian(corners) < jacobian_floor_[f] - 1e-6)
-      found.emplace_back(int(f), -1);
+    for (size_t k = 0; k < 4; ++k) corners[k] = position(positions, mesh_.faces[4 * i + k]);
+    bad[i] = normal[i].dot(start) < 0 || scaled_jacobian(corners) < jacobian_floor_[i] - 1e-6;
   }
+  for (const auto& [a, b] : adjacent_faces_)
+    if ((wanted(a) || wanted(b)) && normal[size_t(a)].dot(normal[size_t(b)]) < -0.5) found.emplace_back(a, b);
+  for (long f = 0; f < faces; ++f)
+    if (bad[size_t(f)]) found.emplace_back(int(f), -1);
   std::sort(found.begin(), found.end());
   found.erase(std::unique(found.begin(), found.end()), found.end());
   return found;

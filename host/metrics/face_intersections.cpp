@@ -130,32 +130,39 @@ std::vector<std::pair<int, int>> intersecting_face_pairs(const MeshTriangles& tr
                                                          const std::vector<char>* only_faces) {
   size_t n = triangles.size();
   if (n == 0) return {};
-  std::vector<Eigen::Vector3d> lo(n), hi(n);
+  // Boxes in floats, rounded outward (half the memory at millions of
+  // triangles; the exact test after them is in doubles).
+  std::vector<Eigen::Vector3f> lo(n), hi(n);
   Eigen::Vector3d low = Eigen::Vector3d::Constant(INFINITY), high = -low;
   double extent = 0;
   for (size_t t = 0; t < n; ++t) {
-    lo[t] = triangles.corner(t, 0).cwiseMin(triangles.corner(t, 1)).cwiseMin(triangles.corner(t, 2));
-    hi[t] = triangles.corner(t, 0).cwiseMax(triangles.corner(t, 1)).cwiseMax(triangles.corner(t, 2));
-    low = low.cwiseMin(lo[t]);
-    high = high.cwiseMax(hi[t]);
-    extent += (hi[t] - lo[t]).maxCoeff();
+    Eigen::Vector3d l = triangles.corner(t, 0).cwiseMin(triangles.corner(t, 1)).cwiseMin(triangles.corner(t, 2));
+    Eigen::Vector3d h = triangles.corner(t, 0).cwiseMax(triangles.corner(t, 1)).cwiseMax(triangles.corner(t, 2));
+    for (int k = 0; k < 3; ++k) {
+      lo[t][k] = std::nextafter(float(l[k]), -INFINITY);
+      hi[t][k] = std::nextafter(float(h[k]), INFINITY);
+    }
+    low = low.cwiseMin(l);
+    high = high.cwiseMax(h);
+    extent += (h - l).maxCoeff();
   }
-  // Each triangle goes into every grid cell its box overlaps. Cells of twice
-  // the mean box extent keep that to a few cells a triangle, however uneven
-  // the edge lengths (a cell of the longest edge puts thousands of small
-  // triangles together next to one long one).
+  // Each triangle goes into every grid cell its box overlaps. Cells of three
+  // times the mean box extent keep that to a few cells a triangle, however
+  // uneven the edge lengths (a cell of the longest edge puts thousands of
+  // small triangles together next to one long one).
   constexpr int kBits = 21;
-  double cell = std::max({3.0 * extent / double(n), (high - low).maxCoeff() / double((1 << kBits) - 2), 1e-12});
-  auto cell_of = [&](const Eigen::Vector3d& p) {
-    Eigen::Vector3d c = ((p - low) / cell).cwiseMax(0.0);
-    return Eigen::Matrix<uint64_t, 3, 1>(uint64_t(c.x()), uint64_t(c.y()), uint64_t(c.z()));
+  double cell = std::max({3.0 * extent / double(n), (high - low).maxCoeff() / double((1 << kBits) - 4), 1e-12});
+  using Cell = Eigen::Matrix<uint32_t, 3, 1>;
+  auto cell_of = [&](const Eigen::Vector3f& p) {
+    Eigen::Vector3d c = ((p.cast<double>() - low) / cell).cwiseMax(0.0);
+    return Cell(uint32_t(c.x()), uint32_t(c.y()), uint32_t(c.z()));
   };
-  auto key = [](const Eigen::Matrix<uint64_t, 3, 1>& c) { return c.x() << (2 * kBits) | c.y() << kBits | c.z(); };
+  auto key = [](const Cell& c) { return uint64_t(c.x()) << (2 * kBits) | uint64_t(c.y()) << kBits | c.z(); };
   auto for_each_cell = [&](size_t t, auto&& visit) {
     auto a = cell_of(lo[t]), b = cell_of(hi[t]);
-    for (uint64_t x = a.x(); x <= b.x(); ++x)
-      for (uint64_t y = a.y(); y <= b.y(); ++y)
-        for (uint64_t z = a.z(); z <= b.z(); ++z) visit(key({x, y, z}));
+    for (uint32_t x = a.x(); x <= b.x(); ++x)
+      for (uint32_t y = a.y(); y <= b.y(); ++y)
+        for (uint32_t z = a.z(); z <= b.z(); ++z) visit(key(Cell(x, y, z)));
   };
   // With `only_faces`, just the cells those faces touch matter: the other
   // triangles enter the grid only where they share such a cell.
@@ -169,7 +176,7 @@ std::vector<std::pair<int, int>> intersecting_face_pairs(const MeshTriangles& tr
   }
   // The cell of each box's low corner: the cell of two boxes' overlap's low
   // corner is their componentwise maximum (cells are monotone per axis).
-  std::vector<Eigen::Matrix<uint64_t, 3, 1>> low_cell(n);
+  std::vector<Cell> low_cell(n);
   for (size_t t = 0; t < n; ++t) low_cell[t] = cell_of(lo[t]);
   std::vector<std::pair<uint64_t, uint32_t>> entries;
   entries.reserve(only_faces ? 8 * wanted_cells.size() : 2 * n);
@@ -178,14 +185,14 @@ std::vector<std::pair<int, int>> intersecting_face_pairs(const MeshTriangles& tr
       if (!only_faces || std::binary_search(wanted_cells.begin(), wanted_cells.end(), k)) entries.emplace_back(k, uint32_t(t));
     });
   std::sort(entries.begin(), entries.end());
-  std::vector<size_t> runs;  // where each cell's run of entries begins
+  std::vector<uint32_t> runs;  // where each cell's run of entries begins
   for (size_t k = 0; k < entries.size(); ++k)
-    if (k == 0 || entries[k].first != entries[k - 1].first) runs.push_back(k);
-  runs.push_back(entries.size());
+    if (k == 0 || entries[k].first != entries[k - 1].first) runs.push_back(uint32_t(k));
+  runs.push_back(uint32_t(entries.size()));
   std::vector<std::pair<int, int>> pairs;
   // Threads pay off only on large meshes (the evolution's guard calls this
   // every step, often with a few faces).
-#pragma omp parallel if (entries.size() > 50000)
+#pragma omp parallel if (entries.size() > 8192)
   {
     std::vector<std::pair<int, int>> found;
     long cells = long(runs.size()) - 1;
