@@ -8,6 +8,10 @@
 
 namespace mcquad {
 
+// The step parameters cross to the device as one kernel argument: 4-byte
+// fields only, so the layout is the same on both sides.
+static_assert(sizeof(device::mcq_step_params) == 14 * 4, "mcq_step_params must stay 4-byte fields");
+
 device::mcq_step_params make_step_params(const EvolutionParameters& parameters, unsigned iteration) {
   device::mcq_step_params params;
   params.cones = parameters.cones;
