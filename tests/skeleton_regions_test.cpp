@@ -87,12 +87,5 @@ TEST(SkeletonRegions, AThinBranchLooksOnlyAsFarAsItsRadius) {
   EXPECT_GT(p.own_surface_in_view(), 0.97);
 }
 
-TEST(SkeletonRegions, UnrestrictedSeesEverythingAtScaleOne) {
-  SkeletonRegions r = unrestricted_regions(5, 3);
-  EXPECT_EQ(r.cell_bones, std::vector<uint32_t>(5, 0));
-  EXPECT_EQ(r.vertex_scale, std::vector<float>(3, 1.0f));
-  EXPECT_EQ(r.visible_bones, std::vector<uint32_t>{0});
-}
-
 }  // namespace
 }  // namespace mcquad

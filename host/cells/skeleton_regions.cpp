@@ -77,14 +77,4 @@ SkeletonRegions build_skeleton_regions(const TubeSkeleton& skeleton, const CellT
   return regions;
 }
 
-SkeletonRegions unrestricted_regions(size_t cell_count, size_t vertex_count) {
-  SkeletonRegions regions;
-  regions.cell_bones.assign(cell_count, 0);
-  regions.vertex_bones.assign(vertex_count, 0);
-  regions.vertex_scale.assign(vertex_count, 1.0f);
-  regions.visible_offsets = {0, 1};
-  regions.visible_bones = {0};
-  return regions;
-}
-
 }  // namespace mcquad

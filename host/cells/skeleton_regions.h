@@ -33,7 +33,4 @@ struct SkeletonRegions {
 SkeletonRegions build_skeleton_regions(const TubeSkeleton& skeleton, const CellTree& cells, const MeshArrays& mesh,
                                        double median_radius, double window = 2.0);
 
-//! Every vertex sees every cell, at scale 1: one bone that sees itself.
-SkeletonRegions unrestricted_regions(size_t cell_count, size_t vertex_count);
-
 }  // namespace mcquad

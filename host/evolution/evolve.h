@@ -12,11 +12,11 @@ namespace mcquad {
 struct IterationRecord {
   unsigned iteration = 0;   //!< 1-based
   double error_level = 0;   //!< the paper's e-bar after this iteration
-  double seconds = 0;       //!< wall time of the step, normals and error level
+  double seconds = 0;       //!< wall time of the step, normals, crossing guard and error level
   double step_seconds = 0;  //!< of which the step and the normals
-  double error_seconds = 0; //!< of which the error level
   double guard_seconds = 0; //!< of which the crossing guard (robust mode)
-  size_t reverted_vertices = 0;  //!< vertices the crossing guard put back
+  double error_seconds = 0; //!< of which the error level
+  size_t held_back_vertices = 0;  //!< vertices whose step the crossing guard shortened
 };
 
 struct EvolutionResult {

@@ -164,7 +164,7 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
     for (const auto& r : evolution.iterations)
       iterations.push_back({{"iteration", r.iteration}, {"error_level", r.error_level}, {"seconds", r.seconds},
                             {"step_seconds", r.step_seconds}, {"error_seconds", r.error_seconds},
-                            {"guard_seconds", r.guard_seconds}, {"reverted_vertices", r.reverted_vertices}});
+                            {"guard_seconds", r.guard_seconds}, {"held_back_vertices", r.held_back_vertices}});
     report["backend"] = {{"name", backend->name()}, {"device", backend->device_name()}};
     report["evolution"] = {{"initial_error_level", evolution.initial_error_level},
                            {"iterations", iterations},
