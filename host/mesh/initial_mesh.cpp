@@ -7,6 +7,7 @@
 
 #include "core/errors.h"
 #include "core/point_index.h"
+#include "evolution/crossing_guard.h"
 #include "mesh/frames.h"
 #include "evolution/shared_math.h"
 #include "mesh/junction_block.h"
@@ -117,9 +118,12 @@ class MeshAssembler {
   //! Catmull-Clark cuts corners: in a crease of the cloud (where tubes meet)
   //! a smoothed vertex can end up outside. Such vertices -- the cloud lies
   //! behind them along their normal, or nearer than two sample spacings --
-  //! are moved back in along the normal.
+  //! are moved back in along the normal. In a thin branch such a move can
+  //! carry a vertex across the tube to the far wall, so the moves go through
+  //! the evolution's crossing guard: none may make faces cross or fold.
   void keep_inside_cloud(QuadMesh& mesh) const {
     MeshArrays arrays = flatten_mesh(mesh);
+    std::vector<float> moved = arrays.positions;
     double margin = 2.0 * spacing_;
     for (auto v : mesh.vertices()) {
       device::mcq_vec3 nv = device::mcq_vertex_normal(arrays.positions.data(), arrays.faces.data(), arrays.vertex_face_offsets.data(),
@@ -132,7 +136,13 @@ class MeshAssembler {
       // Capped: in a thin part the nearest point can lie behind a vertex
       // that is inside (on the far wall); a long shift would cross it.
       double shift = ahead < margin ? std::min(margin - ahead, 2.0 * margin) : 0.0;
-      if (shift > 0) mesh.set_point(v, QuadMesh::Point(p.x() - shift * n.x(), p.y() - shift * n.y(), p.z() - shift * n.z()));
+      for (int k = 0; k < 3; ++k) moved[3 * size_t(v.idx()) + size_t(k)] = float(p[k] - shift * n[k]);
+    }
+    CrossingGuard(arrays).apply(arrays.positions, moved);
+    for (auto v : mesh.vertices()) {
+      const float* m = &moved[3 * size_t(v.idx())];
+      const float* before = &arrays.positions[3 * size_t(v.idx())];
+      if (m[0] != before[0] || m[1] != before[1] || m[2] != before[2]) mesh.set_point(v, QuadMesh::Point(m[0], m[1], m[2]));
     }
   }
   int open_ends() const { return open_ends_; }
