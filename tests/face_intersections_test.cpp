@@ -1,0 +1,82 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "cells/cell_tree.h"
+#include "metrics/face_intersections.h"
+#include "metrics/mesh_metrics.h"
+
+namespace mcquad {
+namespace {
+
+//! A grid of quads over [0, n]^2 whose vertices are jittered in height,
+//! plus a second, tilted grid through it: many crossings, many near misses.
+QuadMesh crumpled_sheets(int n, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  QuadMesh mesh;
+  for (int sheet = 0; sheet < 2; ++sheet) {
+    std::vector<QuadMesh::VertexHandle> v;
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; j <= n; ++j) {
+        double x = i, y = j, z = jitter(random);
+        if (sheet == 1) z += 0.2 * (x - n / 2.0);  // tilted through the first sheet
+        v.push_back(mesh.add_vertex(QuadMesh::Point(x + 0.37 * sheet, y + 0.21 * sheet, z)));
+      }
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        auto at = [&](int a, int b) { return v[size_t(a * (n + 1) + b)]; };
+        mesh.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+      }
+  }
+  return mesh;
+}
+
+std::vector<std::pair<int, int>> brute_force(const MeshTriangles& t, const std::vector<char>* only_faces = nullptr) {
+  std::vector<std::pair<int, int>> pairs;
+  for (size_t a = 0; a < t.size(); ++a)
+    for (size_t b = a + 1; b < t.size(); ++b) {
+      int fa = t.face[a], fb = t.face[b];
+      if (fa == fb || (only_faces && !(*only_faces)[size_t(fa)] && !(*only_faces)[size_t(fb)])) continue;
+      bool shared = false;
+      for (int i : t.corners[a])
+        for (int j : t.corners[b]) shared |= i == j;
+      if (shared) continue;
+      Eigen::Vector3d pa[3], pb[3];
+      for (int k = 0; k < 3; ++k) pa[k] = t.corner(a, k), pb[k] = t.corner(b, k);
+      if (triangles_intersect(pa, pb)) pairs.emplace_back(std::min(fa, fb), std::max(fa, fb));
+    }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  return pairs;
+}
+
+TEST(FaceIntersections, GridMatchesBruteForce) {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    MeshTriangles triangles = triangulate(crumpled_sheets(12, seed));
+    std::vector<std::pair<int, int>> expected = brute_force(triangles);
+    ASSERT_GT(expected.size(), 20u) << "the sheets must cross";
+    EXPECT_EQ(intersecting_face_pairs(triangles), expected) << "seed " << seed;
+    // Only some faces: the pairs with at least one of them.
+    std::vector<char> only(triangles.face.back() + 1, 0);
+    for (size_t f = 0; f < only.size(); f += 3) only[f] = 1;
+    EXPECT_EQ(intersecting_face_pairs(triangles, &only), brute_force(triangles, &only)) << "seed " << seed;
+  }
+}
+
+TEST(FaceIntersections, MetricsSayWhereFacesCross) {
+  QuadMesh mesh = crumpled_sheets(6, 5);
+  PointCloud cloud;
+  for (auto v : mesh.vertices()) cloud.points.push_back(point_of(mesh, v).cast<float>());
+  CellTree cells = build_cell_tree(cloud, 6);
+  QualityMetrics m = measure_quality(mesh, cloud, cells, nullptr);
+  std::vector<std::pair<int, int>> pairs = intersecting_face_pairs(mesh);
+  ASSERT_EQ(m.intersecting_face_pairs, pairs.size());
+  ASSERT_EQ(m.crossing_sites.size(), std::min(pairs.size(), QualityMetrics::kMaxCrossingSites));
+  for (size_t k = 0; k < m.crossing_sites.size(); ++k)
+    EXPECT_LT((m.crossing_sites[k] - 0.5 * (face_centroid(mesh, pairs[k].first) + face_centroid(mesh, pairs[k].second))).norm(), 1e-12);
+  EXPECT_EQ(to_json(m)["crossing_sites"].size(), m.crossing_sites.size());
+}
+
+}  // namespace
+}  // namespace mcquad
