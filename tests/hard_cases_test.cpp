@@ -22,6 +22,9 @@ struct HardCase {
   bool covered;
 };
 
+//! gtest prints the case by its label rather than its bytes.
+void PrintTo(const HardCase& c, std::ostream* os) { *os << c.label; }
+
 ShapeOptions with(double angle = 60, double noise = 0, double outliers = 0, double density_ratio = 1, int holes = 0) {
   ShapeOptions o;
   o.angle_degrees = angle;
