@@ -84,6 +84,9 @@ struct FitCommand {
         ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
     app->add_option("--crossing-guard", crossing_guard, "robust mode: undo moves that make faces cross after each step (on, off)")
         ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
+    app->add_option("--held-back-relaxation", e.held_back_relaxation,
+                    "robust mode: tangential relaxation weight for the vertices the crossing guard held back (0 = off)")
+        ->check(CLI::Range(0.0, 1.0))->capture_default_str();
     app->add_option("--own-cells", own_cells, "robust mode: a vertex sees only the cells of the bones near its own (on, off)")
         ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
     app->add_option("--local-epsilon", local_epsilon, "robust mode: epsilon and the ray reach scale with the local radius (on, off)")

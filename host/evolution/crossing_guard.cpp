@@ -99,11 +99,11 @@ void CrossingGuard::raise_jacobian_floors(const std::vector<float>& positions) {
   low_faces_.swap(still_low);
 }
 
-size_t CrossingGuard::apply(const std::vector<float>& before, std::vector<float>& after) {
+std::vector<uint32_t> CrossingGuard::apply(const std::vector<float>& before, std::vector<float>& after) {
   const std::vector<float> proposed = after;
   // Per vertex, the fraction of its proposed step it takes.
   std::vector<float> fraction(mesh_.vertex_count(), 1.0f);
-  size_t held_back = 0;
+  size_t held_back = 0;  // how many vertices have been shortened so far
   auto step_length = [&](int f) {  // the longest step a corner of face f takes
     double longest = 0;
     for (int k = 0; k < 4; ++k) {
@@ -160,7 +160,10 @@ size_t CrossingGuard::apply(const std::vector<float>& before, std::vector<float>
   std::sort(known_.begin(), known_.end());
   known_.erase(std::unique(known_.begin(), known_.end()), known_.end());
   raise_jacobian_floors(after);
-  return held_back;
+  std::vector<uint32_t> held;
+  for (uint32_t v = 0; v < fraction.size(); ++v)
+    if (fraction[v] < 1.0f) held.push_back(v);
+  return held;
 }
 
 }  // namespace mcquad

@@ -35,8 +35,8 @@ class CrossingGuard {
   explicit CrossingGuard(const MeshArrays& mesh);
 
   //! Shortens the moves from `before` to `after` (both as the mesh's
-  //! positions) as above; returns how many vertices were held back.
-  size_t apply(const std::vector<float>& before, std::vector<float>& after);
+  //! positions) as above; returns the vertices held back, in order.
+  std::vector<uint32_t> apply(const std::vector<float>& before, std::vector<float>& after);
 
   //! A defect: two faces (a < b), or one turned face (b = -1).
   using Defect = std::pair<int, int>;

@@ -31,6 +31,9 @@ struct EvolutionParameters {
   //! Robust mode: moves that make faces cross are undone after each step
   //! (evolution/crossing_guard.h).
   bool crossing_guard = true;
+  //! Robust mode, with the guard: weight of the tangential relaxation of the
+  //! vertices it held back, after each step (0 = none).
+  double held_back_relaxation = 0.6;
   //! Robust mode: a vertex sees only the cells of the bones near its own
   //! (cells/skeleton_regions.h).
   bool own_cells = true;

@@ -36,16 +36,39 @@ device::mcq_step_params make_step_params(const EvolutionParameters& parameters, 
 
 namespace {
 
+//! Moves the held-back vertices toward the mean of their neighbours within
+//! their tangent planes (the relaxation robust mode offers for every vertex,
+//! mcq_relaxed_position, here for these only), through the guard again.
+//! Where a crease or a merged stem stops them, the next step's moves into
+//! it cross less once they are spread out (docs/DESIGN.md).
+void relax_held_back(const MeshArrays& mesh, CrossingGuard& guard, const std::vector<uint32_t>& held,
+                     float weight, std::vector<float>& positions) {
+  std::vector<float> normals(positions.size(), 0.0f), relaxed = positions;
+  for (uint32_t v : held)
+    device::mcq_store3(normals.data(), v,
+                       device::mcq_vertex_normal(positions.data(), mesh.faces.data(), mesh.vertex_face_offsets.data(),
+                                                 mesh.vertex_faces.data(), v));
+  for (uint32_t v : held)
+    device::mcq_store3(relaxed.data(), v,
+                       device::mcq_relaxed_position(positions.data(), normals.data(), mesh.faces.data(),
+                                                    mesh.vertex_face_offsets.data(), mesh.vertex_faces.data(),
+                                                    mesh.boundary.data(), v, weight));
+  guard.apply(positions, relaxed);
+  positions.swap(relaxed);
+}
+
 //! Robust mode's crossing guard on the step just taken from `before`; the
-//! backend gets the shortened positions, and `before` becomes the accepted
-//! ones. Returns the vertices held back.
-size_t guard_step(EvolutionBackend& backend, CrossingGuard& guard, std::vector<float>& before) {
+//! backend gets the shortened (and relaxed) positions, and `before` becomes
+//! the accepted ones. Returns how many vertices were held back.
+size_t guard_step(EvolutionBackend& backend, const MeshArrays& mesh, CrossingGuard& guard, float relaxation,
+                  std::vector<float>& before) {
   std::vector<float> after = backend.positions();
-  size_t held_back = guard.apply(before, after);
-  if (held_back > 0) backend.set_positions(after);
+  std::vector<uint32_t> held = guard.apply(before, after);
+  if (!held.empty() && relaxation > 0.0f) relax_held_back(mesh, guard, held, relaxation, after);
+  if (!held.empty()) backend.set_positions(after);
   backend.finish();
   before.swap(after);
-  return held_back;
+  return held.size();
 }
 
 }  // namespace
@@ -70,7 +93,7 @@ EvolutionResult evolve(EvolutionBackend& backend, const MeshArrays& mesh, const 
     IterationRecord record;
     record.iteration = i + 1;
     auto stepped = Clock::now();
-    if (crossing_guard) record.held_back_vertices = guard_step(backend, *crossing_guard, before);
+    if (crossing_guard) record.held_back_vertices = guard_step(backend, mesh, *crossing_guard, float(parameters.held_back_relaxation), before);
     auto guarded = Clock::now();
     record.error_level = backend.error_level();
     auto end = Clock::now();
