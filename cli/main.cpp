@@ -42,7 +42,7 @@ const std::vector<std::string> kCadExtensions = {"step", "stp", "iges", "igs"};
 
 struct FitCommand {
   std::string points, skeleton, output, report, backend = "auto", ends = "auto", stage = "refined", mode = "robust";
-  std::string projection = "mean", fill_holes = "on", crossing_guard = "on", own_cells = "on", local_epsilon = "off";
+  std::string projection = "mean", fill_holes = "on", crossing_guard = "on", own_cells = "on", local_epsilon = "on";
   FitOptions options;
   double alpha_degrees = 10.0;
   double junction_degrees = 75.0;

@@ -38,9 +38,8 @@ struct EvolutionParameters {
   //! (cells/skeleton_regions.h).
   bool own_cells = true;
   //! Robust mode: epsilon and the ray reach scale with the vertex's bone
-  //! radius over the median radius. Off by default: no measured gain on the
-  //! hard cases once a vertex sees only its own cells (docs/DESIGN.md).
-  bool local_epsilon = false;
+  //! radius over the median radius (docs/DESIGN.md).
+  bool local_epsilon = true;
 };
 
 }  // namespace mcquad
