@@ -82,7 +82,7 @@ struct FitCommand {
         ->check(CLI::IsMember({"mean", "min"}))->capture_default_str();
     app->add_option("--fill-holes", fill_holes, "robust mode: vertices that find no cell take their neighbours' offset (on, off)")
         ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
-    app->add_option("--crossing-guard", crossing_guard, "robust mode: undo moves that make faces cross after each step (on, off)")
+    app->add_option("--crossing-guard", crossing_guard, "robust mode: shorten moves that make faces cross or fold, turn over or lose shape, after each step (on, off)")
         ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
     app->add_option("--held-back-relaxation", e.held_back_relaxation,
                     "robust mode: tangential relaxation weight for the vertices the crossing guard held back (0 = off)")

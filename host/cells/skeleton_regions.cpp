@@ -65,9 +65,7 @@ SkeletonRegions build_skeleton_regions(const TubeSkeleton& skeleton, const CellT
     regions.vertex_bones[size_t(v)] = uint32_t(bone);
     regions.vertex_scale[size_t(v)] = median_radius > 0 ? float(skeleton.bone_radius[size_t(bone)] / median_radius) : 1.0f;
   }
-  std::vector<std::vector<int>> node_bones(graph.node_count());
-  for (size_t b = 0; b < graph.edges.size(); ++b)
-    for (int end : graph.edges[b]) node_bones[size_t(end)].push_back(int(b));
+  std::vector<std::vector<int>> node_bones = graph.node_bones();
   regions.visible_offsets.push_back(0);
   for (size_t b = 0; b < graph.edges.size(); ++b) {
     std::vector<uint32_t> seen = bones_within(graph, node_bones, b, window * skeleton.bone_radius[b]);

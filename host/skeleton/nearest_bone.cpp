@@ -7,13 +7,15 @@
 namespace mcquad {
 namespace {
 
-//! Dense samples along every bone so a kd-tree finds the nearest bone fast.
-void sample_bones(const SkeletonGraph& graph, std::vector<Eigen::Vector3d>& samples, std::vector<int>& sample_bone) {
+//! Dense samples along every bone so a kd-tree finds the nearest bone fast;
+//! `sample_bone` receives each sample's bone.
+std::vector<Eigen::Vector3d> bone_samples(const SkeletonGraph& graph, std::vector<int>& sample_bone) {
   double total = 0;
   for (const auto& e : graph.edges) total += (graph.positions[e[1]] - graph.positions[e[0]]).norm();
   // Spacing fine enough to find the nearest bone's neighbourhood; the exact
   // bone is then decided against the bones sharing its nodes.
   double spacing = total / 2000.0;
+  std::vector<Eigen::Vector3d> samples;
   for (size_t b = 0; b < graph.edges.size(); ++b) {
     const auto& a = graph.positions[graph.edges[b][0]];
     const auto& c = graph.positions[graph.edges[b][1]];
@@ -23,23 +25,14 @@ void sample_bones(const SkeletonGraph& graph, std::vector<Eigen::Vector3d>& samp
       sample_bone.push_back(int(b));
     }
   }
-}
-
-std::vector<Eigen::Vector3d> bone_samples(const SkeletonGraph& graph, std::vector<int>& sample_bone) {
-  std::vector<Eigen::Vector3d> samples;
-  sample_bones(graph, samples, sample_bone);
   return samples;
 }
 
 }  // namespace
 
 NearestBone::NearestBone(const SkeletonGraph& graph)
-    : graph_(graph), sample_bone_(), samples_(bone_samples(graph, sample_bone_)), node_bones_(graph.node_count()), index_(samples_) {
-  for (size_t b = 0; b < graph.edges.size(); ++b) {
-    node_bones_[size_t(graph.edges[b][0])].push_back(int(b));
-    node_bones_[size_t(graph.edges[b][1])].push_back(int(b));
-  }
-}
+    : graph_(graph), sample_bone_(), samples_(bone_samples(graph, sample_bone_)), node_bones_(graph.node_bones()),
+      index_(samples_) {}
 
 NearestBone::Hit NearestBone::find(const Eigen::Vector3d& p) const {
   auto distance_to = [&](int bone, double* t) {

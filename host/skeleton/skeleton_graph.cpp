@@ -57,6 +57,13 @@ int SkeletonGraph::independent_cycles(int component_index) const {
   return edge_count - vertices + 1;
 }
 
+std::vector<std::vector<int>> SkeletonGraph::node_bones() const {
+  std::vector<std::vector<int>> bones(node_count());
+  for (size_t b = 0; b < edges.size(); ++b)
+    for (int end : edges[b]) bones[size_t(end)].push_back(int(b));
+  return bones;
+}
+
 std::vector<Branch> SkeletonGraph::branches() const {
   std::vector<Branch> result;
   std::set<std::pair<int, int>> used;

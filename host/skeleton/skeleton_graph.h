@@ -34,6 +34,8 @@ struct SkeletonGraph {
   int independent_cycles(int component_index) const;
   //! Branches: chains between non-regular nodes, and pure loops.
   std::vector<Branch> branches() const;
+  //! Per node, the bones (indices into edges) that end there.
+  std::vector<std::vector<int>> node_bones() const;
 };
 
 //! Builds the graph from a skeleton as read. `source` (the file name) prefixes
