@@ -91,6 +91,9 @@ struct FitCommand {
         ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
     app->add_option("--local-epsilon", local_epsilon, "robust mode: epsilon and the ray reach scale with the local radius (on, off)")
         ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
+    app->add_option("--hit-band", e.hit_band,
+                    "robust mode: a ray averages every cell within this fraction of epsilon of its first hit (0 = the first cell only)")
+        ->check(CLI::Range(0.0, 1.0))->capture_default_str();
     app->add_option("--iterations", e.iterations, "maximal number of iterations")->capture_default_str();
     app->add_option("--tolerance", e.tolerance, "stop when the error level improves by less than this fraction (0 = never)")
         ->check(CLI::NonNegativeNumber)->capture_default_str();

@@ -103,8 +103,8 @@ __kernel void test_ray_hits(__global const float* origins, __global const float*
       y[k] = d.y;
       z[k] = d.z;
     }
-    mcq_first_cell_hits(node_bounds, node_children, filter, mcq_load3(origins, i), x, y, z, count, reach, hits,
-                        entries);
+    mcq_first_cell_hits(node_bounds, node_children, filter, mcq_load3(origins, i), x, y, z, count, reach, 0.0f, hits,
+                        entries, 0, 0);
     for (int k = 0; k < count; ++k) cells[i * rays + first + (uint)k] = hits[k];
   }
 }

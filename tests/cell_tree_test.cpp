@@ -180,6 +180,7 @@ TEST(CellTree, PacketTraversalGivesEachRayItsOwnFirstHit) {
   std::mt19937 random(19);
   std::uniform_real_distribution<float> u(-1, 1);
   BoneLabels labels(cells);
+  int banded_rays = 0, multi_cell_bands = 0;
   for (int q = 0; q < 200; ++q) {
     device::mcq_cell_filter filter = labels.filter(q % 4 == 3);
     Eigen::Vector3f o = q % 2 ? cloud.points[size_t(q)] : Eigen::Vector3f(u(random), u(random), 0.3f * u(random));
@@ -193,18 +194,97 @@ TEST(CellTree, PacketTraversalGivesEachRayItsOwnFirstHit) {
       x[r] = d.x(), y[r] = d.y(), z[r] = d.z();
     }
     float reach = q % 3 ? 0.2f : 5.0f;
+    // Half the packets also gather their rays' bands, which must not change
+    // the first hits.
+    float band = q % 2 ? 0.0f : 0.05f;
+    int leaves[MCQ_BAND_CANDIDATES], candidates = -1;
     device::mcq_first_cell_hits(cells.node_bounds.data(), cells.node_children.data(), filter, vec(o), x, y, z, count,
-                                reach, hit_cells, entries);
+                                reach, band, hit_cells, entries, leaves, &candidates);
+    ASSERT_LT(candidates, MCQ_BAND_CANDIDATES) << "packet " << q << ": the candidates overflowed";
     for (int r = 0; r < count; ++r) {
       float entry;
-      int cell = device::mcq_first_cell_hit(cells.node_bounds.data(), cells.node_children.data(), filter, vec(o),
-                                            device::mcq_make_vec3(x[r], y[r], z[r]), reach, &entry);
+      device::mcq_vec3 dir = device::mcq_make_vec3(x[r], y[r], z[r]);
+      int cell = device::mcq_first_cell_hit(cells.node_bounds.data(), cells.node_children.data(), filter, vec(o), dir,
+                                            reach, &entry);
       ASSERT_EQ(hit_cells[r], cell) << "packet " << q << " ray " << r;
       if (cell >= 0) {
         EXPECT_EQ(entries[r], entry);
       }
+      if (cell < 0 || band == 0.0f) continue;
+      // Each ray's band from the packet's candidates, against the single-ray walk.
+      int packet_band[MCQ_BAND_CELLS], single_band[MCQ_BAND_CELLS];
+      int in_packet = device::mcq_band_of_ray(cells.node_bounds.data(), cells.node_children.data(), leaves, candidates,
+                                              vec(o), dir, entry, band, packet_band);
+      int in_single = device::mcq_cells_in_band(cells.node_bounds.data(), cells.node_children.data(), filter, vec(o),
+                                                dir, entry, band, single_band);
+      ASSERT_EQ(in_packet, in_single) << "packet " << q << " ray " << r;
+      ASSERT_GE(in_single, 1);
+      EXPECT_NE(std::find(single_band, single_band + in_single, cell), single_band + in_single)
+          << "the first hit is in its band";
+      for (int k = 0; k < in_single; ++k) EXPECT_EQ(packet_band[k], single_band[k]);
+      banded_rays += 1;
+      multi_cell_bands += in_single > 1;
     }
   }
+  EXPECT_GT(banded_rays, 200);
+  EXPECT_GT(multi_cell_bands, 50);
+}
+
+//! Brute force of mcq_cells_in_band: every visible leaf whose box the line
+//! crosses within band of center, sorted by (gap, cell), the first
+//! MCQ_BAND_CELLS.
+std::vector<int> band_brute_force(const CellTree& cells, const Eigen::Vector3f& o, const Eigen::Vector3f& d,
+                                  float center, float band, device::mcq_cell_filter filter) {
+  device::mcq_vec3 inv = device::mcq_make_vec3(device::mcq_safe_inverse(d.x()), device::mcq_safe_inverse(d.y()),
+                                               device::mcq_safe_inverse(d.z()));
+  std::vector<std::pair<float, int>> found;
+  for (size_t node = 0; node < cells.node_count(); ++node) {
+    int child = cells.node_children[2 * node];
+    if (child >= 0 || !device::mcq_cell_is_visible(filter, -1 - child)) continue;
+    float gap = device::mcq_line_box_gap(cells.node_bounds.data(), int(node), vec(o), inv, center);
+    if (gap <= band) found.emplace_back(gap, -1 - child);
+  }
+  std::sort(found.begin(), found.end());
+  std::vector<int> result;
+  for (size_t k = 0; k < found.size() && k < MCQ_BAND_CELLS; ++k) result.push_back(found[k].second);
+  return result;
+}
+
+TEST(CellTree, CellsInBandMatchBruteForceBehindTheOriginToo) {
+  PointCloud cloud = random_cloud(4000, 23);
+  CellTree cells = build_cell_tree(cloud, 6);
+  std::mt19937 random(29);
+  std::uniform_real_distribution<float> u(-1, 1);
+  BoneLabels labels(cells);
+  int behind = 0, full = 0;
+  for (int q = 0; q < 300; ++q) {
+    device::mcq_cell_filter filter = labels.filter(q % 3 == 1);
+    Eigen::Vector3f o = cloud.points[size_t(q)];
+    Eigen::Vector3f d = Eigen::Vector3f(u(random), u(random), u(random)).normalized();
+    float center = q % 2 ? 0.0f : 0.05f, band = q % 5 == 0 ? 0.5f : 0.08f;
+    int band_cells[MCQ_BAND_CELLS];
+    int count = device::mcq_cells_in_band(cells.node_bounds.data(), cells.node_children.data(), filter, vec(o), vec(d),
+                                          center, band, band_cells);
+    std::vector<int> expected = band_brute_force(cells, o, d, center, band, filter);
+    ASSERT_EQ(std::vector<int>(band_cells, band_cells + count), expected) << "ray " << q;
+    full += count == MCQ_BAND_CELLS;
+    device::mcq_vec3 inv = device::mcq_make_vec3(device::mcq_safe_inverse(d.x()), device::mcq_safe_inverse(d.y()),
+                                                 device::mcq_safe_inverse(d.z()));
+    for (size_t node = 0; node < cells.node_count(); ++node) {
+      int child = cells.node_children[2 * node];
+      if (child >= 0) continue;
+      float t_enter, t_exit;
+      const float* b = &cells.node_bounds[6 * node];
+      bool crosses = device::mcq_line_box_interval(
+          device::mcq_make_vec3(b[0] - o.x(), b[1] - o.y(), b[2] - o.z()),
+          device::mcq_make_vec3(b[3] - o.x(), b[4] - o.y(), b[5] - o.z()), inv, &t_enter, &t_exit);
+      // A cell wholly behind the origin, in the band: the half-line never sees it.
+      if (crosses && t_exit < 0 && std::find(band_cells, band_cells + count, -1 - child) != band_cells + count)
+        behind += 1;
+    }
+  }
+  EXPECT_GT(behind, 50);
+  EXPECT_GT(full, 5);  // wide bands overflow, and keep the cells nearest the center
 }
 
 }  // namespace

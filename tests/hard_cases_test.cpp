@@ -17,8 +17,8 @@ struct HardCase {
   const char* shape;
   ShapeOptions options;
   //! Whether 95 % of the cloud lies within 5 % of the local radius plus
-  //! 1.96 sigma of the mesh. Not yet on the 15-degree Y and at 10 % noise
-  //! (docs/HARD_CASES.md says why).
+  //! 1.96 sigma of the mesh. Not yet on the 15-degree Y (docs/HARD_CASES.md
+  //! says why).
   bool covered;
 };
 
@@ -43,7 +43,7 @@ const HardCase kCases[] = {
     {"thin_branch", "thin-branch", with(), true},
     {"noise_2", "t-shape", with(60, 0.02), true},
     {"noise_5", "t-shape", with(60, 0.05), true},
-    {"noise_10", "t-shape", with(60, 0.10), false},
+    {"noise_10", "t-shape", with(60, 0.10), true},
     {"outliers", "t-shape", with(60, 0, 0.01), true},
     {"density_10", "t-shape", with(60, 0, 0, 10), true},
     {"holes", "t-shape", with(60, 0, 0, 1, 3), true},
@@ -51,7 +51,7 @@ const HardCase kCases[] = {
 
 struct Measured {
   size_t crossing = 0, folded = 0;
-  double least_jacobian = 1, coverage_p95 = 0;
+  double least_jacobian = 1, coverage_p95 = 0, surface_mean = 0;
 };
 
 Measured measure(const test::Fixture& f, const std::vector<float>& positions) {
@@ -62,6 +62,7 @@ Measured measure(const test::Fixture& f, const std::vector<float>& positions) {
   m.folded = folded_edges(mesh);
   m.least_jacobian = measure_quad_shape(mesh).min_scaled_jacobian;
   m.coverage_p95 = cloud_to_mesh_relative_to_local_radius(mesh, f.shape.cloud, f.shape.surface).p95;
+  m.surface_mean = measure_true_surface_distance(mesh, f.shape.surface).relative.mean;
   return m;
 }
 
@@ -69,7 +70,9 @@ class HardCases : public ::testing::TestWithParam<HardCase> {};
 
 //! No face pair crosses or folds that did not already in the initial mesh,
 //! every quad keeps a scaled Jacobian of at least 0.3 (or what it started
-//! with), and the cloud is covered.
+//! with), the cloud is covered, and under noise the mesh lies closer to the
+//! true surface, on average, than the noise's sigma (the paper's step does
+//! not at 5 % and 10 %: it settles on the shell's inner layer).
 TEST_P(HardCases, RobustModeKeepsTheMeshValidAndCoversTheCloud) {
   const HardCase& c = GetParam();
   test::Fixture f(c.shape, 40000, c.options);
@@ -84,18 +87,22 @@ TEST_P(HardCases, RobustModeKeepsTheMeshValidAndCoversTheCloud) {
   if (c.covered) {
     EXPECT_LE(end.coverage_p95, 0.05 + 1.96 * c.options.noise);
   }
+  if (c.options.noise > 0) {
+    EXPECT_LT(end.surface_mean, c.options.noise);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Issue6, HardCases, ::testing::ValuesIn(kCases),
                          [](const auto& test_info) { return std::string(test_info.param.label); });
 
 #ifdef MCQUAD_WITH_OPENCL
-//! The guard and the skeleton regions run the same on the device: robust
-//! mode on hard cases gives the serial path's mesh (on the thin branch with
-//! the local epsilon too).
+//! The guard, the skeleton regions and the rays' bands run the same on the
+//! device: robust mode on hard cases gives the serial path's mesh (on the
+//! thin branch with the local epsilon too, and at 10 % noise, where the
+//! bands gather most cells).
 TEST(OpenCLParity, RobustModeOnHardCasesMatchesTheSerialPath) {
   REQUIRE_OPENCL(opencl);
-  for (const HardCase& c : {kCases[0], kCases[4]}) {
+  for (const HardCase& c : {kCases[0], kCases[4], kCases[7]}) {
     test::Fixture f(c.shape, 30000, c.options);
     f.parameters.local_epsilon = std::string(c.shape) == "thin-branch";
     SerialBackend serial;

@@ -40,6 +40,10 @@ struct EvolutionParameters {
   //! Robust mode: epsilon and the ray reach scale with the vertex's bone
   //! radius over the median radius (docs/DESIGN.md).
   bool local_epsilon = true;
+  //! Robust mode: a ray's distance is the mean over every cell its line
+  //! crosses within this fraction of epsilon of its first hit, instead of
+  //! the first cell's alone (0 = the first cell, the paper's; docs/DESIGN.md).
+  double hit_band = 0.4;
 };
 
 }  // namespace mcquad

@@ -66,10 +66,16 @@ class StageTimer {
 
 nlohmann::json parameters_json(const FitOptions& o, double epsilon, double median_radius, size_t leaf_size) {
   const auto& e = o.evolution;
+  const bool robust = e.mode == EvolutionParameters::Mode::kRobust;
   return {{"mode", e.mode == EvolutionParameters::Mode::kPaper ? "paper" : "robust"},
           {"relaxation", e.relaxation},
           {"projection", e.mode == EvolutionParameters::Mode::kPaper || !e.mean_projection ? "min" : "mean"},
-          {"fill_holes", e.mode == EvolutionParameters::Mode::kRobust && e.fill_holes},
+          {"fill_holes", robust && e.fill_holes},
+          {"crossing_guard", robust && e.crossing_guard},
+          {"held_back_relaxation", robust && e.crossing_guard ? e.held_back_relaxation : 0.0},
+          {"own_cells", robust && e.own_cells},
+          {"local_epsilon", robust && e.local_epsilon},
+          {"hit_band", robust ? e.hit_band : 0.0},
           {"cones", e.cones},
           {"generators", e.generators},
           {"alpha_max", e.alpha_max},

@@ -137,8 +137,139 @@ MCQ_FN int mcq_first_cell_hit(const MCQ_GLOBAL float* node_bounds, const MCQ_GLO
   return best_cell == MCQ_NO_CELL ? -1 : best_cell;
 }
 
+/* Parameters [*t_enter, *t_exit] of the whole line origin + t*dir (t of
+ * either sign) inside the box [lo, hi] (corners relative to the origin);
+ * returns 0 when the line misses it. */
+MCQ_FN int mcq_line_box_interval(mcq_vec3 lo, mcq_vec3 hi, mcq_vec3 inv_dir, float* t_enter, float* t_exit) {
+  float tx1 = lo.x * inv_dir.x, tx2 = hi.x * inv_dir.x;
+  float ty1 = lo.y * inv_dir.y, ty2 = hi.y * inv_dir.y;
+  float tz1 = lo.z * inv_dir.z, tz2 = hi.z * inv_dir.z;
+  *t_enter = MCQ_FMAX(MCQ_FMAX(MCQ_FMIN(tx1, tx2), MCQ_FMIN(ty1, ty2)), MCQ_FMIN(tz1, tz2));
+  *t_exit = MCQ_FMIN(MCQ_FMIN(MCQ_FMAX(tx1, tx2), MCQ_FMAX(ty1, ty2)), MCQ_FMAX(tz1, tz2));
+  return *t_enter <= *t_exit;
+}
+
+/* Most cells a ray's band gathers (mcq_cells_in_band). */
+#define MCQ_BAND_CELLS 16
+
+/* How far the box interval [t_enter, t_exit] lies from t (0 when it holds t). */
+MCQ_FN float mcq_interval_gap(float t_enter, float t_exit, float t) {
+  return MCQ_FMAX(MCQ_FMAX(t_enter - t, t - t_exit), 0.0f);
+}
+
+/* Gap (mcq_interval_gap) between `center` and where the line origin +
+ * t*dir crosses node's box; infinite when it misses the box. */
+MCQ_FN float mcq_line_box_gap(const MCQ_GLOBAL float* node_bounds, int node, mcq_vec3 origin, mcq_vec3 inv_dir,
+                              float center) {
+  const MCQ_GLOBAL float* b = node_bounds + 6 * node;
+  float t_enter, t_exit;
+  if (!mcq_line_box_interval(mcq_make_vec3(b[0] - origin.x, b[1] - origin.y, b[2] - origin.z),
+                             mcq_make_vec3(b[3] - origin.x, b[4] - origin.y, b[5] - origin.z), inv_dir, &t_enter,
+                             &t_exit))
+    return MCQ_INFINITY;
+  return mcq_interval_gap(t_enter, t_exit, center);
+}
+
+/* Inserts `item` with key (gap, item) into the list of `found` items sorted
+ * by that key, keeping at most `capacity` (the largest drops out); returns
+ * the new length. */
+MCQ_FN int mcq_insert_nearest(int* items, float* gaps, int found, int capacity, int item, float gap) {
+  int at = found < capacity ? found : capacity;
+  while (at > 0 && (gaps[at - 1] > gap || (gaps[at - 1] == gap && items[at - 1] > item))) {
+    if (at < capacity) {
+      gaps[at] = gaps[at - 1];
+      items[at] = items[at - 1];
+    }
+    --at;
+  }
+  if (at >= capacity) return found;
+  gaps[at] = gap;
+  items[at] = item;
+  return found < capacity ? found + 1 : found;
+}
+
+/* Robust mode's band of a ray: the visible cells whose box the line
+ * origin + t*dir crosses for some t in [center - band, center + band]
+ * (behind the origin too), into cells[], returning how many. When more than
+ * MCQ_BAND_CELLS qualify, those nearest to the center along the line are kept
+ * (ties to the lower index), so the result does not depend on the order of
+ * the traversal. The reference for the packet version below; tests compare
+ * the two. */
+MCQ_FN int mcq_cells_in_band(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
+                             mcq_cell_filter filter, mcq_vec3 origin, mcq_vec3 dir, float center, float band,
+                             int* cells) {
+  mcq_vec3 inv_dir = mcq_make_vec3(mcq_safe_inverse(dir.x), mcq_safe_inverse(dir.y), mcq_safe_inverse(dir.z));
+  float gaps[MCQ_BAND_CELLS];
+  int found = 0;
+  int stack_node[MCQ_STACK_SIZE];
+  int top = 1;
+  stack_node[0] = 0;
+  while (top > 0) {
+    int node = stack_node[--top];
+    float gap = mcq_line_box_gap(node_bounds, node, origin, inv_dir, center);
+    if (gap > band) continue;
+    int left = node_children[2 * node];
+    if (left < 0) {
+      if (mcq_cell_is_visible(filter, -1 - left))
+        found = mcq_insert_nearest(cells, gaps, found, MCQ_BAND_CELLS, -1 - left, gap);
+      continue;
+    }
+    if (top + 2 > MCQ_STACK_SIZE) continue;
+    stack_node[top++] = left;
+    stack_node[top++] = node_children[2 * node + 1];
+  }
+  return found;
+}
+
+/* Ray `dir`'s band (as mcq_cells_in_band) among the candidate leaves that
+ * mcq_first_cell_hits gathered for its packet. */
+MCQ_FN int mcq_band_of_ray(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
+                           const int* leaves, int candidates, mcq_vec3 origin, mcq_vec3 dir, float center, float band,
+                           int* cells) {
+  mcq_vec3 inv_dir = mcq_make_vec3(mcq_safe_inverse(dir.x), mcq_safe_inverse(dir.y), mcq_safe_inverse(dir.z));
+  float gaps[MCQ_BAND_CELLS];
+  int found = 0;
+  for (int k = 0; k < candidates; ++k) {
+    float gap = mcq_line_box_gap(node_bounds, leaves[k], origin, inv_dir, center);
+    if (gap <= band)
+      found = mcq_insert_nearest(cells, gaps, found, MCQ_BAND_CELLS, -1 - node_children[2 * leaves[k]], gap);
+  }
+  return found;
+}
+
 /* Rays traced together by mcq_first_cell_hits; a vertex's 26 fit in one. */
 #define MCQ_PACKET_SIZE 32
+
+/* Most leaves a packet gathers for its rays' bands (mcq_first_cell_hits). */
+#define MCQ_BAND_CANDIDATES 64
+
+/* Whether the line interval [t_enter, t_exit] of a box may still hold a ray's
+ * first hit (entered by t <= best) or, with band > 0, a cell of its band
+ * (crossed within band of a first hit in [0, best]). */
+MCQ_FN int mcq_box_wanted(float t_enter, float t_exit, float best, float band) {
+  return (t_enter <= t_exit) & (t_exit >= -band) & (t_enter <= best + band);
+}
+
+/* Compacts the packet's band candidates to those some ray's current window
+ * still wants (mcq_box_wanted); returns how many remain. */
+MCQ_FN int mcq_drop_unwanted_leaves(const MCQ_GLOBAL float* node_bounds, mcq_vec3 origin, const float* inv_x,
+                                    const float* inv_y, const float* inv_z, const float* entries, int count,
+                                    float band, int* leaves, int found) {
+  int kept = 0;
+  for (int k = 0; k < found; ++k) {
+    const MCQ_GLOBAL float* b = node_bounds + 6 * leaves[k];
+    mcq_vec3 lo = mcq_make_vec3(b[0] - origin.x, b[1] - origin.y, b[2] - origin.z);
+    mcq_vec3 hi = mcq_make_vec3(b[3] - origin.x, b[4] - origin.y, b[5] - origin.z);
+    int wanted = 0;
+    for (int r = 0; r < count; ++r) {
+      float t_enter, t_exit;
+      mcq_line_box_interval(lo, hi, mcq_make_vec3(inv_x[r], inv_y[r], inv_z[r]), &t_enter, &t_exit);
+      wanted |= mcq_box_wanted(t_enter, t_exit, entries[r], band);
+    }
+    if (wanted) leaves[kept++] = leaves[k];
+  }
+  return kept;
+}
 
 /* mcq_first_cell_hit for `count` (<= MCQ_PACKET_SIZE) rays from one origin,
  * with the same result for every ray. A vertex's rays fan out from one point
@@ -147,10 +278,20 @@ MCQ_FN int mcq_first_cell_hit(const MCQ_GLOBAL float* node_bounds, const MCQ_GLO
  * compilers vectorize (PoCL's and GCC's alike), instead of one divergent walk
  * per ray. A node is entered when any ray may still find a better hit in it.
  * dir_x/y/z hold the directions; cells (-1: no hit) and entries receive the
- * results. */
+ * results.
+ *
+ * With band > 0 (robust mode's bands, mcq_cells_in_band) the same walk also
+ * gathers into leaves[] (node indices; their number goes to *candidates)
+ * every visible leaf that may lie in some ray's band: crossed by its line
+ * within band of [0, its best hit so far]. Since the best hit only comes
+ * nearer, the final bands are among them; mcq_band_of_ray picks each ray's.
+ * Should more than MCQ_BAND_CANDIDATES qualify, the list first drops those
+ * no ray's current window still wants, then new ones. One walk for both
+ * costs far less than a second walk from the root. */
 MCQ_FN void mcq_first_cell_hits(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
                                 mcq_cell_filter filter, mcq_vec3 origin, const float* dir_x, const float* dir_y,
-                                const float* dir_z, int count, float reach, int* cells, float* entries) {
+                                const float* dir_z, int count, float reach, float band, int* cells, float* entries,
+                                int* leaves, int* candidates) {
   float inv_x[MCQ_PACKET_SIZE], inv_y[MCQ_PACKET_SIZE], inv_z[MCQ_PACKET_SIZE];
   float mean_x = 0.0f, mean_y = 0.0f, mean_z = 0.0f;
   for (int r = 0; r < count; ++r) {
@@ -163,6 +304,8 @@ MCQ_FN void mcq_first_cell_hits(const MCQ_GLOBAL float* node_bounds, const MCQ_G
     entries[r] = reach;
     cells[r] = MCQ_NO_CELL;
   }
+  band = MCQ_FMAX(band, 0.0f);
+  int found = 0;
   int stack_node[MCQ_STACK_SIZE];
   int top = 1;
   stack_node[0] = 0;
@@ -173,23 +316,34 @@ MCQ_FN void mcq_first_cell_hits(const MCQ_GLOBAL float* node_bounds, const MCQ_G
     mcq_vec3 hi = mcq_make_vec3(b[3] - origin.x, b[4] - origin.y, b[5] - origin.z);
     int left = node_children[2 * node];
     /* A leaf updates the rays it serves better; an inner node is entered
-     * when some ray may still find a better hit in it. Straight loops over
-     * the rays, so they vectorize. */
+     * when some ray may still find a better hit (or a band cell) in it.
+     * Straight loops over the rays, so they vectorize. */
     if (left < 0) {
       int cell = -1 - left;
       if (!mcq_cell_is_visible(filter, cell)) continue;
+      int wanted = 0;
       for (int r = 0; r < count; ++r) {
-        float t = mcq_slab_entry(lo, hi, inv_x[r], inv_y[r], inv_z[r]);
+        float t_enter, t_exit;
+        mcq_line_box_interval(lo, hi, mcq_make_vec3(inv_x[r], inv_y[r], inv_z[r]), &t_enter, &t_exit);
+        wanted |= mcq_box_wanted(t_enter, t_exit, entries[r], band);
+        float t = ((t_exit < 0.0f) | (t_enter > t_exit)) ? -1.0f : MCQ_FMAX(t_enter, 0.0f);
         int better = mcq_hit_is_better(t, cell, entries[r], cells[r]);
         entries[r] = better ? t : entries[r];
         cells[r] = better ? cell : cells[r];
+      }
+      if (band > 0.0f && wanted) {
+        if (found == MCQ_BAND_CANDIDATES)
+          found = mcq_drop_unwanted_leaves(node_bounds, origin, inv_x, inv_y, inv_z, entries, count, band, leaves,
+                                           found);
+        if (found < MCQ_BAND_CANDIDATES) leaves[found++] = node;
       }
       continue;
     }
     int wanted = 0;
     for (int r = 0; r < count; ++r) {
-      float t = mcq_slab_entry(lo, hi, inv_x[r], inv_y[r], inv_z[r]);
-      wanted |= (t >= 0.0f) & (t <= entries[r]);
+      float t_enter, t_exit;
+      mcq_line_box_interval(lo, hi, mcq_make_vec3(inv_x[r], inv_y[r], inv_z[r]), &t_enter, &t_exit);
+      wanted |= mcq_box_wanted(t_enter, t_exit, entries[r], band);
     }
     if (!wanted || top + 2 > MCQ_STACK_SIZE) continue;
     /* Visit first the child the packet's mean direction reaches first. */
@@ -202,6 +356,7 @@ MCQ_FN void mcq_first_cell_hits(const MCQ_GLOBAL float* node_bounds, const MCQ_G
     stack_node[top++] = towards_right >= 0.0f ? left : right;
   }
   for (int r = 0; r < count; ++r) cells[r] = cells[r] == MCQ_NO_CELL ? -1 : cells[r];
+  if (candidates) *candidates = found;
 }
 
 MCQ_FN float mcq_box_distance_squared(const MCQ_GLOBAL float* node_bounds, int node, mcq_vec3 q) {

@@ -20,6 +20,7 @@ typedef struct {
   mcq_uint fill_holes;  /* 1: a vertex no ray finds a feasible cell for takes its neighbours' offset */
   mcq_uint own_cells;   /* 1: a vertex sees only the cells of the bones near its own (skeleton regions) */
   mcq_uint local_epsilon; /* 1: epsilon and reach scale with the vertex's local radius (skeleton regions) */
+  float band;           /* > 0: a ray's d averages every cell within this distance of its first hit; 0: the first cell (the paper) */
 } mcq_step_params;
 
 /* Robust mode's skeleton regions, as laid out by host/cells/skeleton_regions.h. */
@@ -92,10 +93,11 @@ MCQ_FN mcq_uint mcq_sample_index(mcq_uint seed, mcq_uint iteration, mcq_uint ver
  * toward the vertex by the cell's spread along the ray: by the curvature
  * across the cell, and by about 1.5 sigma under noise of sigma along the
  * normal (the least of 10 samples); the mean estimates the cell's middle,
- * unbiased, and averages the noise away (docs/DESIGN.md). */
+ * unbiased, and averages the noise away (docs/DESIGN.md). `stream` tells
+ * apart the cells of one ray's band, so each draws its own samples. */
 MCQ_FN float mcq_cell_distance(const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points,
                                     int cell, mcq_vec3 q, mcq_vec3 dir, mcq_step_params params,
-                                    mcq_uint vertex, mcq_uint ray) {
+                                    mcq_uint vertex, mcq_uint ray, mcq_uint stream) {
   mcq_uint first = cell_offsets[cell];
   mcq_uint count = cell_offsets[cell + 1] - first;
   float d = MCQ_INFINITY, sum = 0.0f;
@@ -105,7 +107,7 @@ MCQ_FN float mcq_cell_distance(const MCQ_GLOBAL mcq_uint* cell_offsets, const MC
     counter.v[0] = vertex;
     counter.v[1] = ray;
     counter.v[2] = block;
-    counter.v[3] = 0u;
+    counter.v[3] = stream;
     mcq_philox_block words = mcq_philox4x32_10(counter, params.seed, params.iteration);
     for (mcq_uint w = 0; w < 4u && block * 4u + w < params.samples; ++w) {
       mcq_uint p = first + mcq_uniform_below(words.v[w], count);
@@ -115,6 +117,24 @@ MCQ_FN float mcq_cell_distance(const MCQ_GLOBAL mcq_uint* cell_offsets, const MC
     }
   }
   return params.mean_projection ? sum / (float)params.samples : d;
+}
+
+/* A ray's distance d to the cloud with robust mode's band (params.band >
+ * 0): the mean d of every cell the line crosses within the band around its
+ * first hit, behind the vertex too (`cells`, from mcq_band_of_ray), instead
+ * of the first cell's alone. Under noise the cloud is a shell several cells
+ * thick, and the first cell a ray enters is its innermost layer: a vertex
+ * settles at that layer's middle, about 1.2 sigma inside at 10 % noise.
+ * The band averages the whole thickness, from both sides of a vertex that
+ * sits inside the shell, so it settles at the shell's middle
+ * (docs/DESIGN.md). */
+MCQ_FN float mcq_band_distance(const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points,
+                               const int* cells, int count, mcq_vec3 q, mcq_vec3 dir, mcq_step_params params,
+                               mcq_uint vertex, mcq_uint ray) {
+  float sum = 0.0f;
+  for (int k = 0; k < count; ++k)
+    sum += mcq_cell_distance(cell_offsets, points, cells[k], q, dir, params, vertex, ray, (mcq_uint)k);
+  return sum / (float)count;
 }
 
 /* The paper's displacement of one vertex along its normal: the mean of the
@@ -128,7 +148,7 @@ MCQ_FN float mcq_vertex_displacement(const MCQ_GLOBAL float* node_bounds, const 
   *feasible = 0u;
   mcq_cell_filter filter = mcq_vertex_cell_filter(regions, vertex, params);
   float scale = params.local_epsilon ? regions.vertex_scale[vertex] : 1.0f;
-  float epsilon = params.epsilon * scale, reach = params.reach * scale;
+  float epsilon = params.epsilon * scale, reach = params.reach * scale, band = params.band * scale;
   if (mcq_dot(n, n) == 0.0f) return 0.0f;
   mcq_vec3 i_axis, j_axis;
   mcq_cone_frame(n, &i_axis, &j_axis);
@@ -146,11 +166,19 @@ MCQ_FN float mcq_vertex_displacement(const MCQ_GLOBAL float* node_bounds, const 
       dir_y[k] = dir.y;
       dir_z[k] = dir.z;
     }
-    mcq_first_cell_hits(node_bounds, node_children, filter, q, dir_x, dir_y, dir_z, count, reach, cells, entries);
+    int leaves[MCQ_BAND_CANDIDATES], candidates = 0;
+    mcq_first_cell_hits(node_bounds, node_children, filter, q, dir_x, dir_y, dir_z, count, reach, band, cells, entries,
+                        leaves, &candidates);
     for (int k = 0; k < count; ++k) {
       if (cells[k] < 0) continue;
       mcq_vec3 dir = mcq_make_vec3(dir_x[k], dir_y[k], dir_z[k]);
-      float d = mcq_cell_distance(cell_offsets, points, cells[k], q, dir, params, vertex, first + (mcq_uint)k);
+      mcq_uint ray = first + (mcq_uint)k;
+      int in_band[MCQ_BAND_CELLS], banded = 0;
+      if (band > 0.0f)
+        banded = mcq_band_of_ray(node_bounds, node_children, leaves, candidates, q, dir, entries[k], band, in_band);
+      /* The first hit is always in its band; banded is 0 only without one. */
+      float d = banded > 0 ? mcq_band_distance(cell_offsets, points, in_band, banded, q, dir, params, vertex, ray)
+                           : mcq_cell_distance(cell_offsets, points, cells[k], q, dir, params, vertex, ray, 0u);
       if (MCQ_FABS(d) < epsilon) {
         sum += d;
         *feasible += 1u;
