@@ -131,9 +131,13 @@ MCQ_FN float mcq_cell_distance(const MCQ_GLOBAL mcq_uint* cell_offsets, const MC
 MCQ_FN float mcq_band_distance(const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points,
                                const int* cells, int count, mcq_vec3 q, mcq_vec3 dir, mcq_step_params params,
                                mcq_uint vertex, mcq_uint ray) {
+  /* The ray's m samples are shared among its band's cells (rounded up), so a
+   * band costs about as many samples as the paper's single cell. */
+  mcq_step_params shared = params;
+  shared.samples = (params.samples + (mcq_uint)count - 1u) / (mcq_uint)count;
   float sum = 0.0f;
   for (int k = 0; k < count; ++k)
-    sum += mcq_cell_distance(cell_offsets, points, cells[k], q, dir, params, vertex, ray, (mcq_uint)k);
+    sum += mcq_cell_distance(cell_offsets, points, cells[k], q, dir, shared, vertex, ray, (mcq_uint)k);
   return sum / (float)count;
 }
 
