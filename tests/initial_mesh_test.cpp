@@ -14,6 +14,11 @@ struct ShapeCase {
   std::string name;
   ShapeOptions options;
   size_t points;
+  //! How far outside the true surface a vertex may lie. 0 but where two
+  //! tubes merged into one (the 15-degree Y) end side by side: the notch
+  //! between their ends is sharper than the cloud's spacing resolves, and
+  //! vertices there are clamped to it within a few thousandths of r.
+  double outside_tolerance = 0.0;
 };
 
 std::string case_name(const testing::TestParamInfo<ShapeCase>& info) {
@@ -68,7 +73,8 @@ TEST_P(InitialMeshProperties, HoldOnGeneratedShape) {
     // Inside the cloud: every vertex inside the true surface.
     for (auto v : mesh.vertices()) {
       const auto& p = mesh.point(v);
-      EXPECT_LT(shape.surface.signed_distance(Eigen::Vector3d(p[0], p[1], p[2])), 0.0) << "vertex " << v.idx();
+      EXPECT_LT(shape.surface.signed_distance(Eigen::Vector3d(p[0], p[1], p[2])), c.outside_tolerance)
+          << "vertex " << v.idx();
     }
   }
 }
@@ -90,6 +96,7 @@ INSTANTIATE_TEST_SUITE_P(Shapes, InitialMeshProperties,
                                          ShapeCase{"torus-knot", {}, 60000}, ShapeCase{"tube-frame", {}, 60000},
                                          ShapeCase{"theta", {}, 20000}, ShapeCase{"y-fork", with_angle(60), 20000},
                                          ShapeCase{"y-fork", with_angle(30), 20000},
+                                         ShapeCase{"y-fork", with_angle(15), 20000, 0.01},
                                          ShapeCase{"star", with_arms(3), 20000}, ShapeCase{"star", with_arms(4), 20000},
                                          ShapeCase{"star", with_arms(5), 20000}, ShapeCase{"star", with_arms(6), 20000}),
                          case_name);

@@ -2,6 +2,7 @@
 
 #include "core/errors.h"
 #include "helpers.h"
+#include "skeleton/acute_junctions.h"
 #include "skeleton/bone_assignment.h"
 #include "skeleton/skeleton_graph.h"
 
@@ -60,6 +61,43 @@ TEST(BoneAssignment, RadiiMatchTheGeneratedTubesDespiteNoise) {
     double truth = shape.surface.capsules()[shape.surface.nearest_capsule(middle)].radius;
     // Bones touching the junction see some of the blob where tubes overlap.
     EXPECT_NEAR(bones.bone_radius[b], truth, 0.08 * truth) << "bone " << b;
+  }
+}
+
+//! Acute forks: at 30 degrees the junction moves up to the cloud's crotch and
+//! stays a junction; at 15 degrees the Y's tubes (radii 0.8, 6 long) still
+//! overlap at their ends, the cloud never parts, and the two branches become
+//! one tube along their middle, as wide as the two side by side.
+TEST(AcuteJunctions, SpreadWhereTheTubesPartMergeWhereTheyNeverDo) {
+  for (double angle : {30.0, 15.0}) {
+    ShapeOptions options;
+    options.angle_degrees = angle;
+    GeneratedShape shape = test::small_shape("y-fork", 20000, options);
+    SkeletonGraph graph = build_skeleton_graph(shape.skeleton, "y");
+    BoneAssignment bones = assign_points_to_bones(graph, shape.cloud, "y");
+    TubeSkeleton spread = spread_acute_junctions(graph, bones, 75.0 * M_PI / 180.0, "y");
+    int junctions = 0, ends = 0;
+    for (size_t v = 0; v < spread.graph.node_count(); ++v) {
+      junctions += spread.graph.kind(int(v)) == NodeKind::kJunction;
+      ends += spread.graph.kind(int(v)) == NodeKind::kEnd;
+    }
+    if (angle == 30.0) {
+      EXPECT_EQ(junctions, 1);
+      EXPECT_EQ(ends, 3);
+      continue;
+    }
+    EXPECT_EQ(junctions, 0);
+    ASSERT_EQ(ends, 2);
+    // The merged end lies between the branches' ends (x = +-6 sin 7.5 deg),
+    // and its bone is wider than either branch there.
+    double widest = 0;
+    for (size_t v = 0; v < spread.graph.node_count(); ++v) {
+      if (spread.graph.kind(int(v)) != NodeKind::kEnd || spread.graph.positions[v].y() < 0) continue;
+      EXPECT_NEAR(spread.graph.positions[v].x(), 0.0, 1e-9);
+      EXPECT_NEAR(spread.graph.positions[v].y(), 6.0 * std::cos(7.5 * M_PI / 180.0), 1e-9);
+    }
+    for (double r : spread.bone_radius) widest = std::max(widest, r);
+    EXPECT_GT(widest, 0.8 + 0.5 * 0.9 * 2 * 6.0 * std::sin(7.5 * M_PI / 180.0));
   }
 }
 

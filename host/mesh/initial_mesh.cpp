@@ -397,6 +397,10 @@ class MeshAssembler {
     }
     Eigen::Vector3d axis_ccw = (soup_.vertices[ring[1]] - center).cross(soup_.vertices[ring[2]] - center).normalized();
     bool ccw_about_outward = axis_ccw.dot(outward) > 0;
+    // Like the rings, the cap stops at the start fraction of the way to the
+    // cloud: where two merged tubes end side by side (acute_junctions.h) the
+    // cloud's end is notched in the middle, nearer than the radius.
+    radius = std::min(radius, options_.start_fraction * distance_to_cloud(center, outward, radius / options_.start_fraction));
     std::array<int, kRing> cap_ring;
     for (int i = 0; i < kRing; ++i) {
       Eigen::Vector3d radial = soup_.vertices[ring[i]] - center;

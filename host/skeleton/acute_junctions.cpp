@@ -84,6 +84,53 @@ SkeletonGraph rebuild(const EditableSkeleton& skeleton, std::vector<double>& rad
   return build_skeleton_graph(data, source, 0.0);
 }
 
+//! Whether two chains from one junction both run to an end, and their
+//! tubes still overlap there: the cloud is one blob with a groove all along,
+//! which never parts into two tubes.
+bool tubes_overlap_to_their_ends(const SkeletonGraph& graph, const std::vector<int>& chain_i,
+                                 const std::vector<int>& chain_j, double ri, double rj) {
+  int end_i = chain_i.back(), end_j = chain_j.back();
+  return graph.kind(end_i) == NodeKind::kEnd && graph.kind(end_j) == NodeKind::kEnd &&
+         (graph.positions[end_i] - graph.positions[end_j]).norm() < ri + rj;
+}
+
+//! The point at `fraction` of the chain's arc length.
+Eigen::Vector3d point_along(const SkeletonGraph& graph, const std::vector<int>& chain, double fraction) {
+  double s = fraction * chain_length(graph, chain);
+  for (size_t k = 0; k + 1 < chain.size(); ++k) {
+    const Eigen::Vector3d& a = graph.positions[chain[k]];
+    const Eigen::Vector3d& b = graph.positions[chain[k + 1]];
+    double span = (b - a).norm();
+    if (s <= span || k + 2 == chain.size()) return a + (b - a) * std::min(1.0, s / std::max(span, 1e-300));
+    s -= span;
+  }
+  return graph.positions[chain.back()];
+}
+
+//! Replaces two chains from one junction by one along their middle (points
+//! at equal fractions of their lengths, averaged): the junction becomes a
+//! regular node of one tube. Each bone's radius is `radius` plus half the
+//! chains' separation there, the half-width of the two tubes side by side;
+//! the rings take the cloud's shape within it (make_ring in
+//! mesh/initial_mesh.cpp stops each ring vertex short of the cloud).
+EditableSkeleton& merge_chains(EditableSkeleton& skeleton, const SkeletonGraph& graph, const std::vector<int>& chain_i,
+                               const std::vector<int>& chain_j, double radius) {
+  for (const auto* chain : {&chain_i, &chain_j})
+    for (size_t k = 0; k + 1 < chain->size(); ++k)
+      skeleton.removed_edge[skeleton.edge_between((*chain)[k], (*chain)[k + 1])] = true;
+  size_t segments = std::max(chain_i.size(), chain_j.size()) - 1;
+  int previous = chain_i.front();
+  for (size_t k = 1; k <= segments; ++k) {
+    double fraction = double(k) / double(segments), middle = (double(k) - 0.5) / double(segments);
+    skeleton.nodes.push_back(0.5 * (point_along(graph, chain_i, fraction) + point_along(graph, chain_j, fraction)));
+    int node = int(skeleton.nodes.size()) - 1;
+    double separation = (point_along(graph, chain_i, middle) - point_along(graph, chain_j, middle)).norm();
+    skeleton.add_edge(previous, node, radius + 0.5 * separation);
+    previous = node;
+  }
+  return skeleton;
+}
+
 }  // namespace
 
 std::vector<double> node_radii(const SkeletonGraph& graph, const std::vector<double>& bone_radius) {
@@ -145,6 +192,11 @@ TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssign
     double along = crotch / std::cos(best_angle / 2) + r;  // along each bone, past the crotch
     if (along > chain_length(g, chain_i) - r || along > chain_length(g, chain_j) - r ||
         chain_i.back() == chain_j.back()) {
+      if (tubes_overlap_to_their_ends(g, chain_i, chain_j, ri, rj)) {
+        result.graph = rebuild(merge_chains(skeleton, g, chain_i, chain_j, std::max(ri, rj)), result.bone_radius, source);
+        kept.clear();  // node indices changed
+        continue;
+      }
       kept.insert({long(best_node) * 100000 + best_i, best_j});
       continue;
     }
