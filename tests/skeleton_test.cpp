@@ -101,6 +101,24 @@ TEST(AcuteJunctions, SpreadWhereTheTubesPartMergeWhereTheyNeverDo) {
   }
 }
 
+//! Two branches whose ends meet but that bow apart between (a pinch) part in
+//! the middle: they are not merged, and the junction stays.
+TEST(AcuteJunctions, BranchesThatPartBetweenTheirEndsAreNotMerged) {
+  // 10 degrees apart at the junction, too short for it to move to a crotch,
+  // ends 0.4 apart (radius 0.4), but 2.4 apart halfway.
+  SkeletonData data = skeleton_of({{0, 0, 0}, {0, -4, 0}, {0.1, 1.1, 0}, {1.2, 2.6, 0}, {0.2, 4.2, 0},
+                                   {-0.1, 1.1, 0}, {-1.2, 2.6, 0}, {-0.2, 4.2, 0}},
+                                  {{0, 1}, {0, 2}, {2, 3}, {3, 4}, {0, 5}, {5, 6}, {6, 7}});
+  SkeletonGraph graph = build_skeleton_graph(data, "pinch.obj");
+  BoneAssignment bones;
+  bones.bone_radius.assign(graph.edges.size(), 0.4);
+  TubeSkeleton spread = spread_acute_junctions(graph, bones, 75.0 * M_PI / 180.0, "pinch.obj");
+  int junctions = 0;
+  for (size_t v = 0; v < spread.graph.node_count(); ++v) junctions += spread.graph.kind(int(v)) == NodeKind::kJunction;
+  EXPECT_EQ(junctions, 1);
+  EXPECT_EQ(spread.graph.node_count(), graph.node_count());
+}
+
 TEST(BoneAssignment, RejectsSkeletonsThatDoNotMatchTheCloud) {
   GeneratedShape shape = test::small_shape("tube", 5000);
   SkeletonGraph far = build_skeleton_graph(skeleton_of({{0, 0, -4}, {0, 0, 4}, {30, 0, 4}}, {{0, 1}, {1, 2}}), "far.obj");

@@ -84,16 +84,6 @@ SkeletonGraph rebuild(const EditableSkeleton& skeleton, std::vector<double>& rad
   return build_skeleton_graph(data, source, 0.0);
 }
 
-//! Whether two chains from one junction both run to an end, and their
-//! tubes still overlap there: the cloud is one blob with a groove all along,
-//! which never parts into two tubes.
-bool tubes_overlap_to_their_ends(const SkeletonGraph& graph, const std::vector<int>& chain_i,
-                                 const std::vector<int>& chain_j, double ri, double rj) {
-  int end_i = chain_i.back(), end_j = chain_j.back();
-  return graph.kind(end_i) == NodeKind::kEnd && graph.kind(end_j) == NodeKind::kEnd &&
-         (graph.positions[end_i] - graph.positions[end_j]).norm() < ri + rj;
-}
-
 //! The point at `fraction` of the chain's arc length.
 Eigen::Vector3d point_along(const SkeletonGraph& graph, const std::vector<int>& chain, double fraction) {
   double s = fraction * chain_length(graph, chain);
@@ -105,6 +95,18 @@ Eigen::Vector3d point_along(const SkeletonGraph& graph, const std::vector<int>& 
     s -= span;
   }
   return graph.positions[chain.back()];
+}
+
+//! Whether two chains from one junction both run to an end, and their
+//! tubes overlap all along, ends included (checked at every eighth of their
+//! lengths): the cloud is one blob with a groove, which never parts into two
+//! tubes.
+bool tubes_never_part(const SkeletonGraph& graph, const std::vector<int>& chain_i, const std::vector<int>& chain_j,
+                      double ri, double rj) {
+  if (graph.kind(chain_i.back()) != NodeKind::kEnd || graph.kind(chain_j.back()) != NodeKind::kEnd) return false;
+  for (int k = 1; k <= 8; ++k)
+    if ((point_along(graph, chain_i, k / 8.0) - point_along(graph, chain_j, k / 8.0)).norm() >= ri + rj) return false;
+  return true;
 }
 
 //! Replaces two chains from one junction by one along their middle (points
@@ -192,7 +194,7 @@ TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssign
     double along = crotch / std::cos(best_angle / 2) + r;  // along each bone, past the crotch
     if (along > chain_length(g, chain_i) - r || along > chain_length(g, chain_j) - r ||
         chain_i.back() == chain_j.back()) {
-      if (tubes_overlap_to_their_ends(g, chain_i, chain_j, ri, rj)) {
+      if (tubes_never_part(g, chain_i, chain_j, ri, rj)) {
         result.graph = rebuild(merge_chains(skeleton, g, chain_i, chain_j, std::max(ri, rj)), result.bone_radius, source);
         kept.clear();  // node indices changed
         continue;

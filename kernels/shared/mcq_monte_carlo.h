@@ -180,7 +180,9 @@ MCQ_FN float mcq_vertex_displacement(const MCQ_GLOBAL float* node_bounds, const 
       int in_band[MCQ_BAND_CELLS], banded = 0;
       if (band > 0.0f)
         banded = mcq_band_of_ray(node_bounds, node_children, leaves, candidates, q, dir, entries[k], band, in_band);
-      /* The first hit is always in its band; banded is 0 only without one. */
+      /* banded is 0 with the band off; on, the first hit is in its band unless
+       * more than MCQ_BAND_CANDIDATES leaves qualified, and the first cell
+       * alone stands in if none is left. */
       float d = banded > 0 ? mcq_band_distance(cell_offsets, points, in_band, banded, q, dir, params, vertex, ray)
                            : mcq_cell_distance(cell_offsets, points, cells[k], q, dir, params, vertex, ray, 0u);
       if (MCQ_FABS(d) < epsilon) {
