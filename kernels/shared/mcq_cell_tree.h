@@ -36,17 +36,31 @@ MCQ_FN int mcq_cell_is_visible(mcq_cell_filter filter, int cell) {
   return 0;
 }
 
-/* Entry parameter of a half-line from the origin into the box [lo, hi]
- * (corners relative to the origin), or -1 when it misses; an origin inside
- * the box enters at 0. */
-MCQ_FN float mcq_slab_entry(mcq_vec3 lo, mcq_vec3 hi, float inv_x, float inv_y, float inv_z) {
-  float tx1 = lo.x * inv_x, tx2 = hi.x * inv_x;
-  float ty1 = lo.y * inv_y, ty2 = hi.y * inv_y;
-  float tz1 = lo.z * inv_z, tz2 = hi.z * inv_z;
-  float t_enter = MCQ_FMAX(MCQ_FMAX(MCQ_FMIN(tx1, tx2), MCQ_FMIN(ty1, ty2)), MCQ_FMIN(tz1, tz2));
-  float t_exit = MCQ_FMIN(MCQ_FMIN(MCQ_FMAX(tx1, tx2), MCQ_FMAX(ty1, ty2)), MCQ_FMAX(tz1, tz2));
-  /* | rather than ||: no branch, so loops over rays vectorize. */
+/* Parameters [*t_enter, *t_exit] of the whole line origin + t*dir (t of
+ * either sign) inside the box [lo, hi] (corners relative to the origin);
+ * returns 0 when the line misses it. */
+MCQ_FN int mcq_line_box_interval(mcq_vec3 lo, mcq_vec3 hi, mcq_vec3 inv_dir, float* t_enter, float* t_exit) {
+  float tx1 = lo.x * inv_dir.x, tx2 = hi.x * inv_dir.x;
+  float ty1 = lo.y * inv_dir.y, ty2 = hi.y * inv_dir.y;
+  float tz1 = lo.z * inv_dir.z, tz2 = hi.z * inv_dir.z;
+  *t_enter = MCQ_FMAX(MCQ_FMAX(MCQ_FMIN(tx1, tx2), MCQ_FMIN(ty1, ty2)), MCQ_FMIN(tz1, tz2));
+  *t_exit = MCQ_FMIN(MCQ_FMIN(MCQ_FMAX(tx1, tx2), MCQ_FMAX(ty1, ty2)), MCQ_FMAX(tz1, tz2));
+  return *t_enter <= *t_exit;
+}
+
+/* Entry parameter of a half-line into a box whose line interval is
+ * [t_enter, t_exit], or -1 when it misses; an origin inside the box enters
+ * at 0. | rather than ||: no branch, so loops over rays vectorize. */
+MCQ_FN float mcq_half_line_entry(float t_enter, float t_exit) {
   return ((t_exit < 0.0f) | (t_enter > t_exit)) ? -1.0f : MCQ_FMAX(t_enter, 0.0f);
+}
+
+/* Entry parameter of a half-line from the origin into the box [lo, hi]
+ * (corners relative to the origin), or -1 when it misses. */
+MCQ_FN float mcq_slab_entry(mcq_vec3 lo, mcq_vec3 hi, float inv_x, float inv_y, float inv_z) {
+  float t_enter, t_exit;
+  mcq_line_box_interval(lo, hi, mcq_make_vec3(inv_x, inv_y, inv_z), &t_enter, &t_exit);
+  return mcq_half_line_entry(t_enter, t_exit);
 }
 
 /* Entry parameter of the half-line origin + t*dir (t >= 0) into node's box,
@@ -135,18 +149,6 @@ MCQ_FN int mcq_first_cell_hit(const MCQ_GLOBAL float* node_bounds, const MCQ_GLO
   }
   *entry = best_t;
   return best_cell == MCQ_NO_CELL ? -1 : best_cell;
-}
-
-/* Parameters [*t_enter, *t_exit] of the whole line origin + t*dir (t of
- * either sign) inside the box [lo, hi] (corners relative to the origin);
- * returns 0 when the line misses it. */
-MCQ_FN int mcq_line_box_interval(mcq_vec3 lo, mcq_vec3 hi, mcq_vec3 inv_dir, float* t_enter, float* t_exit) {
-  float tx1 = lo.x * inv_dir.x, tx2 = hi.x * inv_dir.x;
-  float ty1 = lo.y * inv_dir.y, ty2 = hi.y * inv_dir.y;
-  float tz1 = lo.z * inv_dir.z, tz2 = hi.z * inv_dir.z;
-  *t_enter = MCQ_FMAX(MCQ_FMAX(MCQ_FMIN(tx1, tx2), MCQ_FMIN(ty1, ty2)), MCQ_FMIN(tz1, tz2));
-  *t_exit = MCQ_FMIN(MCQ_FMIN(MCQ_FMAX(tx1, tx2), MCQ_FMAX(ty1, ty2)), MCQ_FMAX(tz1, tz2));
-  return *t_enter <= *t_exit;
 }
 
 /* Most cells a ray's band gathers (mcq_cells_in_band). */
@@ -250,6 +252,19 @@ MCQ_FN int mcq_box_wanted(float t_enter, float t_exit, float best, float band) {
   return (t_enter <= t_exit) & (t_exit >= -band) & (t_enter <= best + band);
 }
 
+/* Whether some ray of the packet wants the box [lo, hi] (corners relative
+ * to the origin), by mcq_box_wanted. A straight loop, so it vectorizes. */
+MCQ_FN int mcq_packet_wants_box(mcq_vec3 lo, mcq_vec3 hi, const float* inv_x, const float* inv_y, const float* inv_z,
+                                const float* entries, int count, float band) {
+  int wanted = 0;
+  for (int r = 0; r < count; ++r) {
+    float t_enter, t_exit;
+    mcq_line_box_interval(lo, hi, mcq_make_vec3(inv_x[r], inv_y[r], inv_z[r]), &t_enter, &t_exit);
+    wanted |= mcq_box_wanted(t_enter, t_exit, entries[r], band);
+  }
+  return wanted;
+}
+
 /* Compacts the packet's band candidates to those some ray's current window
  * still wants (mcq_box_wanted); returns how many remain. */
 MCQ_FN int mcq_drop_unwanted_leaves(const MCQ_GLOBAL float* node_bounds, mcq_vec3 origin, const float* inv_x,
@@ -260,13 +275,7 @@ MCQ_FN int mcq_drop_unwanted_leaves(const MCQ_GLOBAL float* node_bounds, mcq_vec
     const MCQ_GLOBAL float* b = node_bounds + 6 * leaves[k];
     mcq_vec3 lo = mcq_make_vec3(b[0] - origin.x, b[1] - origin.y, b[2] - origin.z);
     mcq_vec3 hi = mcq_make_vec3(b[3] - origin.x, b[4] - origin.y, b[5] - origin.z);
-    int wanted = 0;
-    for (int r = 0; r < count; ++r) {
-      float t_enter, t_exit;
-      mcq_line_box_interval(lo, hi, mcq_make_vec3(inv_x[r], inv_y[r], inv_z[r]), &t_enter, &t_exit);
-      wanted |= mcq_box_wanted(t_enter, t_exit, entries[r], band);
-    }
-    if (wanted) leaves[kept++] = leaves[k];
+    if (mcq_packet_wants_box(lo, hi, inv_x, inv_y, inv_z, entries, count, band)) leaves[kept++] = leaves[k];
   }
   return kept;
 }
@@ -326,7 +335,7 @@ MCQ_FN void mcq_first_cell_hits(const MCQ_GLOBAL float* node_bounds, const MCQ_G
         float t_enter, t_exit;
         mcq_line_box_interval(lo, hi, mcq_make_vec3(inv_x[r], inv_y[r], inv_z[r]), &t_enter, &t_exit);
         wanted |= mcq_box_wanted(t_enter, t_exit, entries[r], band);
-        float t = ((t_exit < 0.0f) | (t_enter > t_exit)) ? -1.0f : MCQ_FMAX(t_enter, 0.0f);
+        float t = mcq_half_line_entry(t_enter, t_exit);
         int better = mcq_hit_is_better(t, cell, entries[r], cells[r]);
         entries[r] = better ? t : entries[r];
         cells[r] = better ? cell : cells[r];
@@ -339,13 +348,8 @@ MCQ_FN void mcq_first_cell_hits(const MCQ_GLOBAL float* node_bounds, const MCQ_G
       }
       continue;
     }
-    int wanted = 0;
-    for (int r = 0; r < count; ++r) {
-      float t_enter, t_exit;
-      mcq_line_box_interval(lo, hi, mcq_make_vec3(inv_x[r], inv_y[r], inv_z[r]), &t_enter, &t_exit);
-      wanted |= mcq_box_wanted(t_enter, t_exit, entries[r], band);
-    }
-    if (!wanted || top + 2 > MCQ_STACK_SIZE) continue;
+    if (!mcq_packet_wants_box(lo, hi, inv_x, inv_y, inv_z, entries, count, band) || top + 2 > MCQ_STACK_SIZE)
+      continue;
     /* Visit first the child the packet's mean direction reaches first. */
     int right = node_children[2 * node + 1];
     const MCQ_GLOBAL float* bl = node_bounds + 6 * left;
