@@ -31,10 +31,11 @@ struct Fixture {
   EvolutionParameters parameters;
   double radius = setup.median_radius;
 
-  explicit Fixture(const std::string& name, size_t points, ShapeOptions options = {})
+  explicit Fixture(const std::string& name, size_t points, ShapeOptions options = {},
+                   const InitialMeshOptions& initial_options = {})
       : shape(test::small_shape(name, points, options)),
         graph(build_skeleton_graph(shape.skeleton, name)),
-        setup(prepare_evolution(graph, shape.cloud, {}, FitOptions().leaf_size, name)) {
+        setup(prepare_evolution(graph, shape.cloud, initial_options, FitOptions().leaf_size, name)) {
     parameters.epsilon = automatic_epsilon(radius);
   }
 

@@ -17,8 +17,9 @@ struct HardCase {
   const char* shape;
   ShapeOptions options;
   //! Whether 95 % of the cloud lies within 5 % of the local radius plus
-  //! 1.96 sigma of the mesh. Not yet on the 15-degree Y (docs/HARD_CASES.md
-  //! says why).
+  //! 1.96 sigma of the mesh. Not on the 15-degree Y at the default
+  //! resolution (docs/HARD_CASES.md says why); it is one level finer
+  //! (Issue6.FifteenDegreeYIsCoveredOneLevelFiner).
   bool covered;
 };
 
@@ -94,6 +95,24 @@ TEST_P(HardCases, RobustModeKeepsTheMeshValidAndCoversTheCloud) {
 
 INSTANTIATE_TEST_SUITE_P(Issue6, HardCases, ::testing::ValuesIn(kCases),
                          [](const auto& test_info) { return std::string(test_info.param.label); });
+
+//! The 15-degree Y's branches never part and are built as one tube, twice as
+//! wide at its end as the trunk's: 16 vertices around do not resolve the two
+//! branch tips beside the notch between them (coverage 9.3 % of r). One
+//! refinement level more does, and the mesh stays valid.
+TEST(Issue6, FifteenDegreeYIsCoveredOneLevelFiner) {
+  InitialMeshOptions finer;
+  finer.target_vertices = 2000;
+  test::Fixture f("y-fork", 40000, with(15), finer);
+  ASSERT_GT(f.arrays.positions.size() / 3, 2000u);
+  Measured start = measure(f, f.arrays.positions);
+  Measured end = measure(f, f.evolve_serially(EvolutionParameters::Mode::kRobust));
+  EXPECT_EQ(start.crossing, 0u);
+  EXPECT_EQ(end.crossing, 0u);
+  EXPECT_EQ(end.folded, 0u);
+  EXPECT_GE(end.least_jacobian, std::min(0.3, start.least_jacobian) - 1e-3);
+  EXPECT_LE(end.coverage_p95, 0.05);
+}
 
 #ifdef MCQUAD_WITH_OPENCL
 //! The guard, the skeleton regions and the rays' bands run the same on the
