@@ -67,9 +67,9 @@ class StageTimer {
 nlohmann::json parameters_json(const FitOptions& o, double epsilon, double median_radius, size_t leaf_size) {
   const auto& e = o.evolution;
   const bool robust = e.mode == EvolutionParameters::Mode::kRobust;
-  return {{"mode", e.mode == EvolutionParameters::Mode::kPaper ? "paper" : "robust"},
+  return {{"mode", robust ? "robust" : "paper"},
           {"relaxation", e.relaxation},
-          {"projection", e.mode == EvolutionParameters::Mode::kPaper || !e.mean_projection ? "min" : "mean"},
+          {"projection", robust && e.mean_projection ? "mean" : "min"},
           {"fill_holes", robust && e.fill_holes},
           {"crossing_guard", robust && e.crossing_guard},
           {"held_back_relaxation", robust && e.crossing_guard ? e.held_back_relaxation : 0.0},
