@@ -128,8 +128,7 @@ struct BoneLabels {
 Hit first_hit_brute_force(const CellTree& cells, const Eigen::Vector3f& o, const Eigen::Vector3f& d, float reach,
                           device::mcq_cell_filter filter) {
   Hit best;
-  device::mcq_vec3 inv = device::mcq_make_vec3(device::mcq_safe_inverse(d.x()), device::mcq_safe_inverse(d.y()),
-                                               device::mcq_safe_inverse(d.z()));
+  device::mcq_vec3 inv = device::mcq_inverse_direction(vec(d));
   for (size_t node = 0; node < cells.node_count(); ++node) {
     int child = cells.node_children[2 * node];
     if (child >= 0) continue;
@@ -235,8 +234,7 @@ TEST(CellTree, PacketTraversalGivesEachRayItsOwnFirstHit) {
 //! MCQ_BAND_CELLS.
 std::vector<int> band_brute_force(const CellTree& cells, const Eigen::Vector3f& o, const Eigen::Vector3f& d,
                                   float center, float band, device::mcq_cell_filter filter) {
-  device::mcq_vec3 inv = device::mcq_make_vec3(device::mcq_safe_inverse(d.x()), device::mcq_safe_inverse(d.y()),
-                                               device::mcq_safe_inverse(d.z()));
+  device::mcq_vec3 inv = device::mcq_inverse_direction(vec(d));
   std::vector<std::pair<float, int>> found;
   for (size_t node = 0; node < cells.node_count(); ++node) {
     int child = cells.node_children[2 * node];
@@ -268,8 +266,7 @@ TEST(CellTree, CellsInBandMatchBruteForceBehindTheOriginToo) {
     std::vector<int> expected = band_brute_force(cells, o, d, center, band, filter);
     ASSERT_EQ(std::vector<int>(band_cells, band_cells + count), expected) << "ray " << q;
     full += count == MCQ_BAND_CELLS;
-    device::mcq_vec3 inv = device::mcq_make_vec3(device::mcq_safe_inverse(d.x()), device::mcq_safe_inverse(d.y()),
-                                                 device::mcq_safe_inverse(d.z()));
+    device::mcq_vec3 inv = device::mcq_inverse_direction(vec(d));
     for (size_t node = 0; node < cells.node_count(); ++node) {
       int child = cells.node_children[2 * node];
       if (child >= 0) continue;

@@ -63,20 +63,32 @@ MCQ_FN float mcq_slab_entry(mcq_vec3 lo, mcq_vec3 hi, float inv_x, float inv_y, 
   return mcq_half_line_entry(t_enter, t_exit);
 }
 
+/* The corners of node's box relative to `origin`, as the slab tests take them. */
+MCQ_FN void mcq_node_corners(const MCQ_GLOBAL float* node_bounds, int node, mcq_vec3 origin, mcq_vec3* lo,
+                             mcq_vec3* hi) {
+  const MCQ_GLOBAL float* b = node_bounds + 6 * node;
+  *lo = mcq_make_vec3(b[0] - origin.x, b[1] - origin.y, b[2] - origin.z);
+  *hi = mcq_make_vec3(b[3] - origin.x, b[4] - origin.y, b[5] - origin.z);
+}
+
 /* Entry parameter of the half-line origin + t*dir (t >= 0) into node's box,
  * or a negative value when it misses. */
 MCQ_FN float mcq_ray_box_entry(const MCQ_GLOBAL float* node_bounds, int node, mcq_vec3 origin,
                                mcq_vec3 inv_dir) {
-  const MCQ_GLOBAL float* b = node_bounds + 6 * node;
-  return mcq_slab_entry(mcq_make_vec3(b[0] - origin.x, b[1] - origin.y, b[2] - origin.z),
-                        mcq_make_vec3(b[3] - origin.x, b[4] - origin.y, b[5] - origin.z), inv_dir.x, inv_dir.y,
-                        inv_dir.z);
+  mcq_vec3 lo, hi;
+  mcq_node_corners(node_bounds, node, origin, &lo, &hi);
+  return mcq_slab_entry(lo, hi, inv_dir.x, inv_dir.y, inv_dir.z);
 }
 
 /* A direction component of exactly zero would make 0 * inf = NaN in the slab
  * test; a tiny signed stand-in keeps the test exact for practical purposes. */
 MCQ_FN float mcq_safe_inverse(float d) {
   return 1.0f / (MCQ_FABS(d) > 1e-20f ? d : MCQ_COPYSIGN(1e-20f, d));
+}
+
+/* The componentwise mcq_safe_inverse of a ray direction, as the slab tests take it. */
+MCQ_FN mcq_vec3 mcq_inverse_direction(mcq_vec3 dir) {
+  return mcq_make_vec3(mcq_safe_inverse(dir.x), mcq_safe_inverse(dir.y), mcq_safe_inverse(dir.z));
 }
 
 /* "No cell" while searching: above every cell index, so the tie rule below
@@ -99,7 +111,7 @@ MCQ_FN int mcq_hit_is_better(float t, int cell, float best_t, int best_cell) {
 MCQ_FN int mcq_first_cell_hit(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
                               mcq_cell_filter filter, mcq_vec3 origin, mcq_vec3 dir, float reach,
                               float* entry) {
-  mcq_vec3 inv_dir = mcq_make_vec3(mcq_safe_inverse(dir.x), mcq_safe_inverse(dir.y), mcq_safe_inverse(dir.z));
+  mcq_vec3 inv_dir = mcq_inverse_direction(dir);
   int stack_node[MCQ_STACK_SIZE];
   float stack_t[MCQ_STACK_SIZE];
   float best_t = reach;
@@ -163,12 +175,10 @@ MCQ_FN float mcq_interval_gap(float t_enter, float t_exit, float t) {
  * t*dir crosses node's box; infinite when it misses the box. */
 MCQ_FN float mcq_line_box_gap(const MCQ_GLOBAL float* node_bounds, int node, mcq_vec3 origin, mcq_vec3 inv_dir,
                               float center) {
-  const MCQ_GLOBAL float* b = node_bounds + 6 * node;
+  mcq_vec3 lo, hi;
+  mcq_node_corners(node_bounds, node, origin, &lo, &hi);
   float t_enter, t_exit;
-  if (!mcq_line_box_interval(mcq_make_vec3(b[0] - origin.x, b[1] - origin.y, b[2] - origin.z),
-                             mcq_make_vec3(b[3] - origin.x, b[4] - origin.y, b[5] - origin.z), inv_dir, &t_enter,
-                             &t_exit))
-    return MCQ_INFINITY;
+  if (!mcq_line_box_interval(lo, hi, inv_dir, &t_enter, &t_exit)) return MCQ_INFINITY;
   return mcq_interval_gap(t_enter, t_exit, center);
 }
 
@@ -200,7 +210,7 @@ MCQ_FN int mcq_insert_nearest(int* items, float* gaps, int found, int capacity, 
 MCQ_FN int mcq_cells_in_band(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
                              mcq_cell_filter filter, mcq_vec3 origin, mcq_vec3 dir, float center, float band,
                              int* cells) {
-  mcq_vec3 inv_dir = mcq_make_vec3(mcq_safe_inverse(dir.x), mcq_safe_inverse(dir.y), mcq_safe_inverse(dir.z));
+  mcq_vec3 inv_dir = mcq_inverse_direction(dir);
   float gaps[MCQ_BAND_CELLS];
   int found = 0;
   int stack_node[MCQ_STACK_SIZE];
@@ -228,7 +238,7 @@ MCQ_FN int mcq_cells_in_band(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOB
 MCQ_FN int mcq_band_of_ray(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
                            const int* leaves, int candidates, mcq_vec3 origin, mcq_vec3 dir, float center, float band,
                            int* cells) {
-  mcq_vec3 inv_dir = mcq_make_vec3(mcq_safe_inverse(dir.x), mcq_safe_inverse(dir.y), mcq_safe_inverse(dir.z));
+  mcq_vec3 inv_dir = mcq_inverse_direction(dir);
   float gaps[MCQ_BAND_CELLS];
   int found = 0;
   for (int k = 0; k < candidates; ++k) {
@@ -272,9 +282,8 @@ MCQ_FN int mcq_drop_unwanted_leaves(const MCQ_GLOBAL float* node_bounds, mcq_vec
                                     float band, int* leaves, int found) {
   int kept = 0;
   for (int k = 0; k < found; ++k) {
-    const MCQ_GLOBAL float* b = node_bounds + 6 * leaves[k];
-    mcq_vec3 lo = mcq_make_vec3(b[0] - origin.x, b[1] - origin.y, b[2] - origin.z);
-    mcq_vec3 hi = mcq_make_vec3(b[3] - origin.x, b[4] - origin.y, b[5] - origin.z);
+    mcq_vec3 lo, hi;
+    mcq_node_corners(node_bounds, leaves[k], origin, &lo, &hi);
     if (mcq_packet_wants_box(lo, hi, inv_x, inv_y, inv_z, entries, count, band)) leaves[kept++] = leaves[k];
   }
   return kept;
@@ -320,9 +329,8 @@ MCQ_FN void mcq_first_cell_hits(const MCQ_GLOBAL float* node_bounds, const MCQ_G
   stack_node[0] = 0;
   while (top > 0) {
     int node = stack_node[--top];
-    const MCQ_GLOBAL float* b = node_bounds + 6 * node;
-    mcq_vec3 lo = mcq_make_vec3(b[0] - origin.x, b[1] - origin.y, b[2] - origin.z);
-    mcq_vec3 hi = mcq_make_vec3(b[3] - origin.x, b[4] - origin.y, b[5] - origin.z);
+    mcq_vec3 lo, hi;
+    mcq_node_corners(node_bounds, node, origin, &lo, &hi);
     int left = node_children[2 * node];
     /* A leaf updates the rays it serves better; an inner node is entered
      * when some ray may still find a better hit (or a band cell) in it.
