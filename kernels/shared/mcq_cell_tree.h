@@ -55,14 +55,6 @@ MCQ_FN float mcq_half_line_entry(float t_enter, float t_exit) {
   return ((t_exit < 0.0f) | (t_enter > t_exit)) ? -1.0f : MCQ_FMAX(t_enter, 0.0f);
 }
 
-/* Entry parameter of a half-line from the origin into the box [lo, hi]
- * (corners relative to the origin), or -1 when it misses. */
-MCQ_FN float mcq_slab_entry(mcq_vec3 lo, mcq_vec3 hi, float inv_x, float inv_y, float inv_z) {
-  float t_enter, t_exit;
-  mcq_line_box_interval(lo, hi, mcq_make_vec3(inv_x, inv_y, inv_z), &t_enter, &t_exit);
-  return mcq_half_line_entry(t_enter, t_exit);
-}
-
 /* The corners of node's box relative to `origin`, as the slab tests take them. */
 MCQ_FN void mcq_node_corners(const MCQ_GLOBAL float* node_bounds, int node, mcq_vec3 origin, mcq_vec3* lo,
                              mcq_vec3* hi) {
@@ -77,7 +69,9 @@ MCQ_FN float mcq_ray_box_entry(const MCQ_GLOBAL float* node_bounds, int node, mc
                                mcq_vec3 inv_dir) {
   mcq_vec3 lo, hi;
   mcq_node_corners(node_bounds, node, origin, &lo, &hi);
-  return mcq_slab_entry(lo, hi, inv_dir.x, inv_dir.y, inv_dir.z);
+  float t_enter, t_exit;
+  mcq_line_box_interval(lo, hi, inv_dir, &t_enter, &t_exit);
+  return mcq_half_line_entry(t_enter, t_exit);
 }
 
 /* A direction component of exactly zero would make 0 * inf = NaN in the slab
