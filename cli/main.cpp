@@ -271,9 +271,9 @@ int main(int argc, char** argv) {
   generate_app->add_option("--noise", shape_options.noise, "noise along the normal, fraction of the tube radius")
       ->check(CLI::NonNegativeNumber)->capture_default_str();
   generate_app->add_option("--seed", shape_options.seed, "random seed")->capture_default_str();
-  generate_app->add_option("--angle", shape_options.angle_degrees, "y-fork: angle between the branches, degrees")
-      ->check(CLI::Range(5.0, 175.0))->capture_default_str();
-  generate_app->add_option("--arms", shape_options.arms, "star: junction valence (3..6)")->check(CLI::Range(3, 6))->capture_default_str();
+  generate_app->add_option("--angle", shape_options.angle_degrees, "y-fork: angle between the branches (0 = 60); fan: between neighbours (0 = 30); degrees")
+      ->check(CLI::Range(0.0, 175.0))->capture_default_str();
+  generate_app->add_option("--arms", shape_options.arms, "star, planar-star: junction valence (3..16)")->check(CLI::Range(3, 16))->capture_default_str();
   generate_app->add_option("--outliers", shape_options.outliers, "fraction of points replaced by outliers off the surface")
       ->check(CLI::Range(0.0, 0.5))->capture_default_str();
   generate_app->add_option("--density-ratio", shape_options.density_ratio, "density falls along x by this factor")

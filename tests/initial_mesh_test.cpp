@@ -3,6 +3,7 @@
 #include "core/errors.h"
 #include "helpers.h"
 #include "mesh/initial_mesh.h"
+#include "mesh/junction_layout.h"
 #include "metrics/face_intersections.h"
 #include "metrics/mesh_metrics.h"
 #include "skeleton/bone_assignment.h"
@@ -98,7 +99,67 @@ INSTANTIATE_TEST_SUITE_P(Shapes, InitialMeshProperties,
                                          ShapeCase{"y-fork", with_angle(30), 20000},
                                          ShapeCase{"y-fork", with_angle(15), 20000, 0.01},
                                          ShapeCase{"star", with_arms(3), 20000}, ShapeCase{"star", with_arms(4), 20000},
-                                         ShapeCase{"star", with_arms(5), 20000}, ShapeCase{"star", with_arms(6), 20000}),
+                                         ShapeCase{"star", with_arms(5), 20000}, ShapeCase{"star", with_arms(6), 20000},
+                                         // Issue 20: five arms in a plane at uneven angles (the cube block
+                                         // had 162 crossing pairs here).
+                                         ShapeCase{"planar-star", with_arms(5), 30000}),
+                         case_name);
+
+class JunctionTopology : public testing::TestWithParam<ShapeCase> {};
+
+//! Junctions of any valence and direction (issue 20): at two resolutions
+//! the initial mesh is all quads, 2-manifold, outward, with the skeleton's
+//! Euler characteristic and boundary loops, and irregular vertices only on
+//! blocks and caps, at most max(8, 2 x valence) a junction and 4 a cap, as
+//! many at both levels. Not yet asserted here: that no faces cross or fold
+//! (docs/CONSTRUCTION.md lists the counts still left on these shapes).
+TEST_P(JunctionTopology, HoldsAtAnyValence) {
+  const ShapeCase& c = GetParam();
+  GeneratedShape shape = test::small_shape(c.name, c.points, c.options);
+  SkeletonGraph graph = build_skeleton_graph(shape.skeleton, c.name);
+  BoneAssignment bones = assign_points_to_bones(graph, shape.cloud, c.name);
+  size_t irregular_at_first_level = 0;
+  for (int level = 0; level < 2; ++level) {
+    InitialMeshOptions options;
+    options.target_vertices = level == 0 ? 1 : 4000;
+    InitialMesh initial = build_initial_mesh(graph, bones, shape.cloud, options, c.name);
+    MeshStatistics s = mesh_statistics(initial.mesh);
+    EXPECT_EQ(s.quad_fraction, 1.0);
+    EXPECT_EQ(s.non_manifold_vertices, 0u);
+    EXPECT_EQ(s.components, 1u);
+    EXPECT_EQ(s.euler_characteristic, 2 - 2 * graph.independent_cycles(0) - shape.open_ends);
+    EXPECT_EQ(s.boundary_loops, size_t(shape.open_ends));
+    for (int v : irregular_vertices(initial.mesh)) EXPECT_TRUE(initial.irregular_allowed[v]) << "vertex " << v;
+    size_t budget = 0;
+    const SkeletonGraph& built = initial.skeleton.graph;
+    for (size_t node = 0; node < built.node_count(); ++node) {
+      size_t degree = built.neighbours[node].size();
+      if (degree >= 3) budget += std::max<size_t>(8, 2 * degree);
+      if (degree == 1) budget += 4;
+    }
+    EXPECT_LE(s.irregular_vertices, budget);
+    if (level == 0) irregular_at_first_level = s.irregular_vertices;
+    else EXPECT_EQ(s.irregular_vertices, irregular_at_first_level);
+  }
+  // Outward: with every end capped, the mesh winds once round every node.
+  InitialMeshOptions capped;
+  capped.ends = EndMode::kCapped;
+  capped.target_vertices = 1;
+  InitialMesh closed = build_initial_mesh(graph, bones, shape.cloud, capped, c.name);
+  for (size_t node = 0; node < closed.skeleton.graph.node_count(); ++node)
+    EXPECT_NEAR(winding_number(closed.mesh, closed.skeleton.graph.positions[node]), 1.0, 1e-6) << "node " << node;
+}
+
+INSTANTIATE_TEST_SUITE_P(Issue20, JunctionTopology,
+                         // Not yet here: the planar 8 and the skew 7, whose capped meshes
+                         // cross themselves enough to wind twice round a node.
+                         testing::Values(ShapeCase{"planar-star", with_arms(7), 30000},
+                                         ShapeCase{"star", with_arms(8), 30000},
+                                         ShapeCase{"star", with_arms(9), 30000}, ShapeCase{"star", with_arms(10), 40000},
+                                         ShapeCase{"star", with_arms(12), 40000}, ShapeCase{"octopus", {}, 40000},
+                                         ShapeCase{"fan", with_angle(20), 30000}, ShapeCase{"fan", with_angle(30), 30000},
+                                         ShapeCase{"fan", with_angle(40), 30000},
+                                         ShapeCase{"double-junction", {}, 30000}),
                          case_name);
 
 //! Two separate objects in one cloud and one skeleton: a torus and, beside
@@ -124,31 +185,33 @@ TEST(InitialMesh, SeparateObjectsBecomeSeparateComponents) {
   EXPECT_EQ(intersecting_face_pairs(initial.mesh).size(), 0u);
 }
 
-TEST(InitialMesh, SevenArmsFailClearlyNamingTheNode) {
+//! Above kMaxJunctionValence bones a node fails with UnsupportedError
+//! naming it, whether or not acute junctions would move first.
+TEST(InitialMesh, TooManyArmsFailClearlyNamingTheNode) {
+  const int arms = kMaxJunctionValence + 1;
   SkeletonData skeleton;
   skeleton.nodes.push_back(Eigen::Vector3d::Zero());
-  for (int k = 0; k < 7; ++k) {
-    double a = 2 * M_PI * k / 7;
+  for (int k = 0; k < arms; ++k) {
+    double a = 2 * M_PI * k / arms;
     skeleton.nodes.push_back(Eigen::Vector3d(5 * std::cos(a), 5 * std::sin(a), k % 2 ? 1.0 : -1.0));
     skeleton.edges.push_back({0, k + 1});
   }
-  SkeletonGraph graph = build_skeleton_graph(skeleton, "seven.obj");
-  try {
-    std::vector<Eigen::Vector3d> directions;
-    for (int next : graph.neighbours[0]) directions.push_back(graph.positions[next].normalized());
-    PointCloud cloud;
-    for (int k = 1; k <= 7; ++k)
-      for (int s = 0; s < 50; ++s) cloud.points.push_back((graph.positions[k] * (s / 50.0) + Eigen::Vector3d(0, 0, 0.5)).cast<float>());
-    BoneAssignment bones = assign_points_to_bones(graph, cloud, "seven.obj");
+  SkeletonGraph graph = build_skeleton_graph(skeleton, "many.obj");
+  PointCloud cloud;
+  for (int k = 1; k <= arms; ++k)
+    for (int s = 0; s < 50; ++s) cloud.points.push_back((graph.positions[k] * (s / 50.0) + Eigen::Vector3d(0, 0, 0.5)).cast<float>());
+  BoneAssignment bones = assign_points_to_bones(graph, cloud, "many.obj");
+  for (double min_angle : {0.0, 75.0 * M_PI / 180}) {
     InitialMeshOptions options;
-    options.min_junction_angle = 0;  // keep all seven bones at the node
-    build_initial_mesh(graph, bones, cloud, options, "seven.obj");
-    FAIL() << "valence 7 accepted";
-  } catch (const UnsupportedError& e) {
-    EXPECT_NE(std::string(e.what()).find("valence 7"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("node"), std::string::npos) << e.what();
-  } catch (const InputError& e) {
-    FAIL() << e.what();
+    options.min_junction_angle = min_angle;
+    try {
+      build_initial_mesh(graph, bones, cloud, options, "many.obj");
+      ADD_FAILURE() << "valence " << arms << " accepted";
+    } catch (const UnsupportedError& e) {
+      EXPECT_NE(std::string(e.what()).find("valence " + std::to_string(arms)), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("node at"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("many.obj"), std::string::npos) << e.what();
+    }
   }
 }
 
@@ -172,7 +235,9 @@ TEST(InitialMesh, StagesStopEarly) {
   InitialMeshOptions options;
   options.stage = "blocks";
   InitialMesh blocks = build_initial_mesh(graph, bones, shape.cloud, options, "t");
-  EXPECT_EQ(blocks.mesh.n_faces(), 12u);  // a cube of 6 face groups, 3 taken by bones
+  // The T's block is a cube: 3 bones' quads and 3 fillers, each split in 4.
+  EXPECT_EQ(blocks.mesh.n_faces(), 24u);
+  EXPECT_EQ(mesh_statistics(blocks.mesh).euler_characteristic, 2);
   options.stage = "extruded";
   InitialMesh extruded = build_initial_mesh(graph, bones, shape.cloud, options, "t");
   options.stage = "refined";

@@ -88,16 +88,74 @@ void y_fork(ShapeBuilder& b, double angle_degrees) {
 }
 
 void star(ShapeBuilder& b, int arms) {
-  if (arms < 3 || arms > 6) throw InputError("star: --arms must be between 3 and 6");
+  if (arms < 3 || arms > 16) throw InputError("star: --arms must be between 3 and 16");
   // Directions spread over the sphere (Fibonacci points), then rotated off
   // the coordinate axes so no arm lines up with a block face by accident.
+  // From 7 arms on, every fourth end is open and radii alternate.
   Eigen::Matrix3d skew = (Eigen::AngleAxisd(0.4, Vec(1, 2, 3).normalized())).toRotationMatrix();
   int junction = b.node(Vec(0, 0, 0));
   for (int k = 0; k < arms; ++k) {
     double z = 1 - 2 * (k + 0.5) / arms, r = std::sqrt(1 - z * z), phi = k * M_PI * (3 - std::sqrt(5.0));
     Vec direction = skew * Vec(r * std::cos(phi), r * std::sin(phi), z);
-    b.tube(b.line(junction, 6.0 * direction, 1.0), 0.8);
+    bool mixed = arms > 6;
+    b.tube(b.line(junction, 6.0 * direction, 1.0), mixed && k % 2 ? 0.6 : 0.8, false, mixed && k % 4 == 3);
   }
+}
+
+//! Arms in one plane at uneven angles (each up to a third of the even
+//! spacing off), radii cycling 0.8, 0.5, 0.65, every third end open.
+void planar_star(ShapeBuilder& b, int arms) {
+  if (arms < 3 || arms > 16) throw InputError("planar-star: --arms must be between 3 and 16");
+  int junction = b.node(Vec(0, 0, 0));
+  const double radii[3] = {0.8, 0.5, 0.65};
+  for (int k = 0; k < arms; ++k) {
+    double a = 2 * M_PI * (k + 0.33 * std::sin(2.7 * k + 1.0)) / arms;
+    b.tube(b.line(junction, 6.0 * Vec(std::cos(a), std::sin(a), 0), 1.0), radii[k % 3], false, k % 3 == 1);
+  }
+}
+
+//! An octopus: a thick mantle (radius 1.6) above one junction and eight
+//! arms (radius 0.5 tapering to 0.32) leaving it just below horizontal,
+//! curling as they go down; every other arm's end is open.
+void octopus(ShapeBuilder& b) {
+  int junction = b.node(Vec(0, 0, 0));
+  b.tube(b.line(junction, Vec(0, 0, 4.5), 1.5), 1.6);
+  for (int k = 0; k < 8; ++k) {
+    double a = 2 * M_PI * k / 8 + 0.1 * std::sin(3.0 * k);
+    int previous = junction;
+    for (int j = 0; j < 7; ++j) {
+      double rho = 1.4 + 0.9 * j, phi = a + 0.05 * j * j, z = -0.5 - 0.2 * j * j;
+      int next = b.node(Vec(rho * std::cos(phi), rho * std::sin(phi), z));
+      b.tube({previous, next}, 0.5 - 0.03 * j, false, j == 6 && k % 2 == 1);
+      previous = next;
+    }
+  }
+}
+
+//! A trunk (radius 1) going down and three branches (radius 0.55) going up
+//! in one plane, neighbours --angle degrees apart (a broom; 20..40 is the
+//! hard range), the middle one open.
+void fan(ShapeBuilder& b, double angle_degrees) {
+  if (!(angle_degrees >= 10 && angle_degrees <= 60)) throw InputError("fan: --angle must be between 10 and 60");
+  int junction = b.node(Vec(0, 0, 0));
+  b.tube(b.line(junction, Vec(0, 0, -5), 1.0), 1.0);
+  for (int k = -1; k <= 1; ++k) {
+    double a = k * angle_degrees * M_PI / 180;
+    b.tube(b.line(junction, 7.0 * Vec(std::sin(a), 0, std::cos(a)), 1.0), 0.55, false, k == 0);
+  }
+}
+
+//! Two junctions of valence 4 a short bone (twice its radius) apart, their
+//! arms skew to each other; two of the six ends open.
+void double_junction(ShapeBuilder& b) {
+  int left = b.node(Vec(0, 0, 0)), right = b.node(Vec(1.6, 0, 0));
+  b.tube({left, right}, 0.8);
+  b.tube(b.line(left, Vec(-4, 3, 0), 1.0), 0.7);
+  b.tube(b.line(left, Vec(-4, -3, 0.5), 1.0), 0.6, false, true);
+  b.tube(b.line(left, Vec(-2.5, 0, 4), 1.0), 0.7);
+  b.tube(b.line(right, Vec(5.5, 3, 1.5), 1.0), 0.7);
+  b.tube(b.line(right, Vec(5.5, -3, -1), 1.0), 0.6);
+  b.tube(b.line(right, Vec(4, 0.5, -4.5), 1.0), 0.7, false, true);
 }
 
 void theta(ShapeBuilder& b) {
@@ -269,7 +327,11 @@ std::vector<std::pair<std::string, std::string>> shape_catalogue() {
           {"bent-tube", "a bent pipe, open at both ends"},
           {"torus", "a torus (a pure loop)"},
           {"y-fork", "a Y: trunk and two thinner branches at --angle degrees"},
-          {"star", "one junction of valence --arms (3..6) at skew angles"},
+          {"star", "one junction of valence --arms (3..16) at skew angles (from 7: radii and ends mixed)"},
+          {"planar-star", "one junction of valence --arms (3..16) in a plane, uneven angles, mixed radii and ends"},
+          {"octopus", "a thick mantle over eight curling arms (valence 9)"},
+          {"fan", "a trunk and three branches --angle degrees apart in a plane (default 30)"},
+          {"double-junction", "two junctions of valence 4 a short bone apart"},
           {"theta", "two junctions joined by three chains"},
           {"parallel-tubes", "two capped tubes whose surfaces pass half a radius apart"},
           {"thin-branch", "a trunk with a branch a fifth of its radius"},
@@ -284,8 +346,12 @@ GeneratedShape generate_shape(const std::string& name, const ShapeOptions& optio
   else if (name == "tube") straight_tube(b);
   else if (name == "bent-tube") bent_tube(b);
   else if (name == "torus") torus(b);
-  else if (name == "y-fork") y_fork(b, options.angle_degrees);
+  else if (name == "y-fork") y_fork(b, options.angle_degrees > 0 ? options.angle_degrees : 60.0);
   else if (name == "star") star(b, options.arms);
+  else if (name == "planar-star") planar_star(b, options.arms);
+  else if (name == "octopus") octopus(b);
+  else if (name == "fan") fan(b, options.angle_degrees > 0 ? options.angle_degrees : 30.0);
+  else if (name == "double-junction") double_junction(b);
   else if (name == "theta") theta(b);
   else if (name == "parallel-tubes") parallel_tubes(b);
   else if (name == "thin-branch") thin_branch(b);

@@ -13,8 +13,8 @@ struct ShapeOptions {
   size_t points = 0;      //!< 0 = the shape's default count
   double noise = 0;       //!< standard deviation along the normal, as a fraction of the tube radius
   uint64_t seed = 1;
-  double angle_degrees = 60;  //!< y-fork: angle between the two branches
-  int arms = 4;               //!< star: valence of the junction (3..6), arms at skew angles
+  double angle_degrees = 0;   //!< y-fork: angle between the two branches (0 = 60); fan: between neighbours (0 = 30)
+  int arms = 4;               //!< star, planar-star: valence of the junction (3..16)
   // Scan defects (issue 6's cases):
   double outliers = 0;        //!< fraction of the points replaced by outliers at least a radius off the surface
   double density_ratio = 1;   //!< density falls linearly along x from 1 to 1/ratio (10 = tenfold)

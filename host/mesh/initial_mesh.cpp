@@ -10,6 +10,7 @@
 #include "evolution/crossing_guard.h"
 #include "mesh/frames.h"
 #include "evolution/shared_math.h"
+#include "mesh/cube_block.h"
 #include "mesh/junction_block.h"
 #include "mesh/mesh_arrays.h"
 #include "mesh/open_ends.h"
@@ -25,6 +26,9 @@ constexpr int kRing = 8;  // vertices around a tube in the rough mesh
 // A tube leaves its port straight for a while before turning toward its bone,
 // so neighbouring ports' tubes do not crowd the block edge between them.
 constexpr double kPortWeight = 1.4;
+// A junction whose bones all lie within this angle of their own cube face's
+// normal gets the cube block (docs/CONSTRUCTION.md, section 3).
+constexpr double kCubeFitDegrees = 25.0;
 
 std::string node_name(const SkeletonGraph& graph, int node) {
   std::ostringstream s;
@@ -70,36 +74,52 @@ class MeshAssembler {
       : graph_(skeleton.graph), skeleton_(skeleton), cloud_(cloud), options_(options), source_(source),
         cloud_index_(cloud_index), spacing_(sample_spacing()) {}
 
-  void build_blocks() {
+  void build_blocks(bool closed) {
     for (size_t node = 0; node < graph_.node_count(); ++node) {
       if (graph_.kind(int(node)) != NodeKind::kJunction) continue;
       const Eigen::Vector3d& center = graph_.positions[node];
-      std::vector<Eigen::Vector3d> directions;
-      double largest_ring = 0;
+      JunctionBones bones;
       for (int next : graph_.neighbours[node]) {
-        directions.push_back((graph_.positions[next] - center).normalized());
-        largest_ring = std::max(largest_ring, tube_radius(int(node), next));
+        bones.directions.push_back((graph_.positions[next] - center).normalized());
+        bones.tube_radii.push_back(tube_radius(int(node), next));
       }
-      BlockOrientation orientation;
-      try {
-        orientation = orient_block(directions);
-      } catch (const UnsupportedError& e) {
-        throw UnsupportedError(source_ + ": " + node_name(graph_, int(node)) + ": " + e.what());
+      // Where the bones fit a cube's faces (every bone within
+      // kCubeFitDegrees of its own face's normal), the cube block: measured
+      // on the existing shapes, it is the better one there. Otherwise the
+      // general block (junction_layout.h): any valence, any directions.
+      std::vector<Port> ports;
+      double largest_ring = *std::max_element(bones.tube_radii.begin(), bones.tube_radii.end());
+      double size = largest_ring / 0.76;  // the cube's ring lies at 0.76 of its size from its axis
+      BlockOrientation cube;
+      bool cube_fits = bones.directions.size() <= 6;
+      if (cube_fits) {
+        cube = orient_cube_block(bones.directions);
+        cube_fits = cube.worst_cosine >= std::cos(kCubeFitDegrees * M_PI / 180.0);
       }
-      // A face group's ring lies at about 0.76 of the block's size from its
-      // axis; size the block so the ring matches the widest bone's tube.
-      double size = largest_ring / 0.76;
-      // Where tubes overlap, the cloud can be thinner around the node than
-      // any bone's radius (below a moved crotch): each block vertex stays
-      // at the start fraction of the way to the cloud in its direction.
-      auto reach = [&](const Eigen::Vector3d& direction) {
-        return options_.start_fraction * distance_to_cloud(center, direction, size / options_.start_fraction);
-      };
-      std::vector<Port> ports = add_junction_block(soup_, center, size, orientation, reach);
+      if (cube_fits && !closed) {
+        auto reach = [&](const Eigen::Vector3d& direction) {
+          return options_.start_fraction * distance_to_cloud(center, direction, size / options_.start_fraction);
+        };
+        ports = add_cube_block(soup_, center, size, cube, reach);
+      } else {
+        JunctionLayout layout;
+        try {
+          layout = layout_junction(bones.directions, bones.tube_radii);
+        } catch (const UnsupportedError& e) {
+          throw UnsupportedError(source_ + ": " + node_name(graph_, int(node)) + ": " + e.what());
+        }
+        // Where tubes overlap, the cloud can be thinner around the node than
+        // any bone's radius (below a moved crotch): each block vertex stays
+        // at the start fraction of the way to the cloud in its direction.
+        auto reach = [&](const Eigen::Vector3d& direction, double wanted) {
+          return options_.start_fraction * distance_to_cloud(center, direction, wanted / options_.start_fraction);
+        };
+        ports = add_junction_block(soup_, center, layout, bones, reach, closed);
+      }
       const auto& neighbours = graph_.neighbours[node];
       for (size_t k = 0; k < ports.size(); ++k) {
         ports_[{int(node), neighbours[k]}] = ports[k];
-        blend_length_[{int(node), neighbours[k]}] = blend_length(int(node), int(k), directions, ports[k], size);
+        blend_length_[{int(node), neighbours[k]}] = blend_length(int(node), int(k), bones.directions, ports[k], size);
       }
     }
   }
@@ -439,8 +459,9 @@ QuadMesh to_openmesh(const QuadSoup& soup, const std::string& source) {
     const auto& q = soup.quads[f];
     auto face = mesh.add_face(std::vector<QuadMesh::VertexHandle>{handles[q[0]], handles[q[1]], handles[q[2]], handles[q[3]]});
     if (!face.is_valid())
-      throw UnsupportedError(source + ": the initial mesh construction produced a non-manifold configuration at quad " +
-                             std::to_string(f) + " (please report this skeleton)");
+      throw UnsupportedError(source + ": the initial mesh is not a manifold at quad " + std::to_string(f) +
+                             " (at (" + [&] { std::ostringstream s; s << soup.vertices[size_t(q[0])].transpose(); return s.str(); }() +
+                             ")): two tubes or blocks of this skeleton overlap there");
   }
   return mesh;
 }
@@ -500,9 +521,15 @@ InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment&
                                const PointIndex<float>* cloud_index) {
   std::unique_ptr<PointIndex<float>> own_index;
   if (!cloud_index) cloud_index = (own_index = std::make_unique<PointIndex<float>>(cloud.points)).get();
+  // Checked before acute junctions move: a node's valence is what the user gave.
+  for (size_t node = 0; node < graph.node_count(); ++node)
+    if (int(graph.neighbours[node].size()) > kMaxJunctionValence)
+      throw UnsupportedError(source + ": " + node_name(graph, int(node)) + ": a junction of valence " +
+                             std::to_string(graph.neighbours[node].size()) + " (more than " +
+                             std::to_string(kMaxJunctionValence) + " bones) is not supported");
   TubeSkeleton skeleton = spread_acute_junctions(graph, bones, options.min_junction_angle, source);
   MeshAssembler assembler(skeleton, cloud, *cloud_index, options, source);
-  assembler.build_blocks();
+  assembler.build_blocks(options.stage == "blocks");
   InitialMesh result;
   if (options.stage == "blocks") {
     if (assembler.soup().quads.empty()) throw InputError(source + ": the skeleton has no junction, so there are no blocks");

@@ -4,31 +4,34 @@
 #include <functional>
 #include <vector>
 
+#include "mesh/junction_layout.h"
 #include "mesh/quad_soup.h"
 
 namespace mcquad {
 
-//! The rotation (columns: block axes in world space) of a junction block and
-//! which of its six face groups each bone takes: +x,-x,+y,-y,+z,-z = 0..5.
-struct BlockOrientation {
-  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-  std::vector<int> face_of_bone;
-  double worst_cosine = 1;  //!< smallest cosine between a bone and its face's normal
+//! The bones of one junction as the block sees them.
+struct JunctionBones {
+  std::vector<Eigen::Vector3d> directions;  //!< unit, from the node
+  std::vector<double> tube_radii;           //!< the initial tube's radius on each bone
 };
 
-//! One rotation of the block for all its bones, maximizing the bones'
-//! alignment with distinct face groups (sum of cosines plus the worst one).
-//! Valence 1..6; UnsupportedError above.
-BlockOrientation orient_block(const std::vector<Eigen::Vector3d>& bone_directions);
+//! How far from the node the union of the junction's tubes reaches in
+//! `direction` (unit): a tube of radius r on a bone at angle t from it ends
+//! r / sin t out (its wall), or r behind the node (its round end); the union
+//! is the farthest. Near a bone, 1 / sin t is capped (at 15 degrees).
+double tube_union_reach(const JunctionBones& bones, const Eigen::Vector3d& direction);
 
-//! Adds a junction block: a cube of six face groups (2x2 quads each) centred
-//! at `center`, its vertices on a sphere of radius `size`, rotated by
-//! `orientation`. The face groups taken by bones are left open; their rings
-//! are returned as ports, in bone order.
-//! `reach(direction)` bounds each vertex's distance from the centre (the
-//! cloud is not round around every junction).
-std::vector<Port> add_junction_block(QuadSoup& soup, const Eigen::Vector3d& center, double size,
-                                     const BlockOrientation& orientation,
-                                     const std::function<double(const Eigen::Vector3d&)>& reach);
+//! Adds the junction block laid out by `layout` (junction_layout.h) at
+//! `center`: its corners and the midpoints of its edges (one Catmull-Clark
+//! split) at tube_union_reach, so they sit where neighbouring tubes meet,
+//! but no farther out than `reach(direction, wanted)` (the cloud is not round
+//! around every junction). Each bone's quad is left open: its 8-vertex ring is
+//! returned as the bone's port, counter-clockwise about the port's outward
+//! direction. With `closed`, the quads are filled instead (four quads round
+//! a centre vertex each), so the block alone is a closed polyhedron.
+std::vector<Port> add_junction_block(QuadSoup& soup, const Eigen::Vector3d& center, const JunctionLayout& layout,
+                                     const JunctionBones& bones,
+                                     const std::function<double(const Eigen::Vector3d&, double)>& reach,
+                                     bool closed = false);
 
 }  // namespace mcquad

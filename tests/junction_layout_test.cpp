@@ -1,0 +1,142 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "core/errors.h"
+#include "core/quad_mesh.h"
+#include "mesh/junction_block.h"
+#include "mesh/junction_layout.h"
+#include "metrics/mesh_metrics.h"
+
+namespace mcquad {
+namespace {
+
+using Vec = Eigen::Vector3d;
+
+struct Junction {
+  std::string name;
+  std::vector<Vec> directions;
+  std::vector<double> radii;
+};
+
+Junction planar(const std::string& name, const std::vector<double>& degrees) {
+  Junction j{name, {}, {}};
+  for (size_t k = 0; k < degrees.size(); ++k) {
+    double a = degrees[k] * M_PI / 180;
+    j.directions.emplace_back(std::cos(a), std::sin(a), 0);
+    j.radii.push_back(k % 2 ? 0.5 : 0.9);
+  }
+  return j;
+}
+
+Junction fibonacci(int n) {
+  Junction j{"skew" + std::to_string(n), {}, {}};
+  for (int k = 0; k < n; ++k) {
+    double z = 1 - 2 * (k + 0.5) / n, r = std::sqrt(1 - z * z), phi = k * M_PI * (3 - std::sqrt(5.0));
+    j.directions.emplace_back(r * std::cos(phi), r * std::sin(phi), z);
+    j.radii.push_back(0.6 + 0.1 * (k % 3));
+  }
+  return j;
+}
+
+//! Random directions at least 25 degrees apart, random radii (seeded).
+Junction random_junction(int n, unsigned seed) {
+  std::mt19937 random(seed);
+  std::normal_distribution<double> gauss;
+  std::uniform_real_distribution<double> radius(0.3, 1.2);
+  Junction j{"random" + std::to_string(n) + "_" + std::to_string(seed), {}, {}};
+  while (int(j.directions.size()) < n) {
+    Vec d(gauss(random), gauss(random), gauss(random));
+    d.normalize();
+    bool apart = true;
+    for (const Vec& e : j.directions) apart = apart && d.dot(e) < std::cos(25 * M_PI / 180);
+    if (apart) {
+      j.directions.push_back(d);
+      j.radii.push_back(radius(random));
+    }
+  }
+  return j;
+}
+
+std::vector<Junction> junctions() {
+  std::vector<Junction> all{planar("T", {0, 180, 270}), planar("Y120", {90, 210, 330}),
+                            planar("planar5_uneven", {0, 60, 150, 200, 290}),
+                            planar("planar7_uneven", {0, 40, 95, 150, 200, 250, 310}),
+                            planar("planar8_uneven", {0, 30, 85, 140, 180, 230, 270, 320}),
+                            planar("planar12", {0, 30, 60, 90, 120, 150, 180, 210, 240, 270, 300, 330})};
+  Junction octahedral{"octahedral", {Vec::UnitX(), -Vec::UnitX(), Vec::UnitY(), -Vec::UnitY(), Vec::UnitZ(), -Vec::UnitZ()},
+                      std::vector<double>(6, 1.0)};
+  all.push_back(octahedral);
+  Junction octopus{"octopus", {Vec::UnitZ()}, {1.6}};
+  for (int k = 0; k < 8; ++k) {
+    double a = 2 * M_PI * k / 8;
+    octopus.directions.push_back(Vec(std::cos(a), std::sin(a), -0.3).normalized());
+    octopus.radii.push_back(0.45);
+  }
+  all.push_back(octopus);
+  // Not yet here: fans of bones 25-40 degrees apart (one trunk, three
+  // branches in a plane), whose outer quads' rings lean toward the middle
+  // bone (docs/CONSTRUCTION.md, section 3).
+  for (int n = 3; n <= kMaxJunctionValence; ++n) all.push_back(fibonacci(n));
+  for (unsigned seed = 1; seed <= 24; ++seed) all.push_back(random_junction(3 + int(seed % 8), seed));
+  return all;
+}
+
+class JunctionLayoutCases : public testing::TestWithParam<Junction> {};
+
+//! The block alone (bones' quads filled) is a closed, outward, all-quad
+//! polyhedron; every bone's quad faces that bone more than any other; at
+//! most max(8, 2 x valence) irregular vertices once tubes are attached.
+TEST_P(JunctionLayoutCases, IsAClosedOutwardQuadPolyhedronFacingEveryBone) {
+  const Junction& j = GetParam();
+  JunctionLayout layout = layout_junction(j.directions, j.radii);
+  const int n = int(j.directions.size());
+  EXPECT_LE(layout.irregular_vertices, std::max(8, 2 * n));
+  QuadSoup soup;
+  JunctionBones bones{j.directions, j.radii};
+  auto unlimited = [](const Vec&, double wanted) { return wanted; };
+  std::vector<Port> ports = add_junction_block(soup, Vec::Zero(), layout, bones, unlimited, true);
+  ASSERT_EQ(int(ports.size()), n);
+  QuadMesh mesh;
+  std::vector<QuadMesh::VertexHandle> handles;
+  for (const Vec& p : soup.vertices) handles.push_back(mesh.add_vertex(QuadMesh::Point(p.x(), p.y(), p.z())));
+  for (const auto& q : soup.quads) {
+    auto face = mesh.add_face(std::vector<QuadMesh::VertexHandle>{handles[size_t(q[0])], handles[size_t(q[1])],
+                                                                   handles[size_t(q[2])], handles[size_t(q[3])]});
+    ASSERT_TRUE(face.is_valid()) << "non-manifold quad";
+  }
+  MeshStatistics s = mesh_statistics(mesh);
+  EXPECT_EQ(s.euler_characteristic, 2);
+  EXPECT_EQ(s.boundary_loops, 0u);
+  EXPECT_NEAR(winding_number(mesh, Vec::Zero()), 1.0, 1e-6) << "outward";
+  for (int b = 0; b < n; ++b) {
+    Vec facing = (ports[size_t(b)].center).normalized();
+    EXPECT_GT(ports[size_t(b)].outward.dot(j.directions[size_t(b)]), 0.3) << "bone " << b;
+    int nearest = 0;
+    for (int c = 1; c < n; ++c)
+      if (facing.dot(j.directions[size_t(c)]) > facing.dot(j.directions[size_t(nearest)])) nearest = c;
+    EXPECT_EQ(nearest, b) << "bone " << b << "'s quad faces bone " << nearest;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Issue20, JunctionLayoutCases, testing::ValuesIn(junctions()),
+                         [](const testing::TestParamInfo<Junction>& param) { return param.param.name; });
+
+TEST(JunctionLayout, TheOctahedralSixIsACube) {
+  std::vector<Vec> d{Vec::UnitX(), -Vec::UnitX(), Vec::UnitY(), -Vec::UnitY(), Vec::UnitZ(), -Vec::UnitZ()};
+  JunctionLayout layout = layout_junction(d, std::vector<double>(6, 1.0));
+  EXPECT_EQ(layout.corner_directions.size(), 8u);
+  EXPECT_EQ(layout.edges.size(), 12u);
+  EXPECT_TRUE(layout.filler_directions.empty());
+}
+
+TEST(JunctionLayout, RefusesWhatItCannotBuild) {
+  std::vector<Vec> many;
+  for (int k = 0; k <= kMaxJunctionValence; ++k) many.push_back(Vec(std::cos(k), std::sin(k), 0.1 * k).normalized());
+  EXPECT_THROW(layout_junction(many, std::vector<double>(many.size(), 1.0)), UnsupportedError);
+  std::vector<Vec> same{Vec::UnitX(), Vec::UnitX(), Vec::UnitY()};
+  EXPECT_THROW(layout_junction(same, {1, 1, 1}), UnsupportedError);
+}
+
+}  // namespace
+}  // namespace mcquad
