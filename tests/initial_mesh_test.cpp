@@ -30,6 +30,26 @@ std::string case_name(const testing::TestParamInfo<ShapeCase>& info) {
   return name;
 }
 
+//! The topology every initial mesh must have: all quads, 2-manifold, one
+//! component per skeleton component, the skeleton's Euler characteristic,
+//! one boundary loop per open end (decided from the cloud), irregular
+//! vertices only on blocks and caps. Returns the mesh's statistics.
+MeshStatistics expect_initial_topology(const InitialMesh& initial, const SkeletonGraph& graph,
+                                       const GeneratedShape& shape) {
+  MeshStatistics s = mesh_statistics(initial.mesh);
+  EXPECT_EQ(s.quad_fraction, 1.0);
+  EXPECT_EQ(s.non_manifold_vertices, 0u);
+  EXPECT_EQ(s.components, size_t(graph.component_count));
+  long expected_euler = 0;
+  for (int k = 0; k < graph.component_count; ++k) expected_euler += 2 - 2 * graph.independent_cycles(k);
+  expected_euler -= shape.open_ends;
+  EXPECT_EQ(initial.open_ends, shape.open_ends) << "open ends decided from the cloud";
+  EXPECT_EQ(s.euler_characteristic, expected_euler);
+  EXPECT_EQ(s.boundary_loops, size_t(shape.open_ends));
+  for (int v : irregular_vertices(initial.mesh)) EXPECT_TRUE(initial.irregular_allowed[v]) << "vertex " << v;
+  return s;
+}
+
 class InitialMeshProperties : public testing::TestWithParam<ShapeCase> {};
 
 //! Every property the issue asks of the initial mesh, at two resolutions.
@@ -44,18 +64,8 @@ TEST_P(InitialMeshProperties, HoldOnGeneratedShape) {
     options.target_vertices = level == 0 ? 1 : 4000;
     InitialMesh initial = build_initial_mesh(graph, bones, shape.cloud, options, c.name);
     const QuadMesh& mesh = initial.mesh;
-    MeshStatistics s = mesh_statistics(mesh);
-    EXPECT_EQ(s.quad_fraction, 1.0);
-    EXPECT_EQ(s.non_manifold_vertices, 0u);
-    EXPECT_EQ(s.components, size_t(graph.component_count));
-    long expected_euler = 0;
-    for (int k = 0; k < graph.component_count; ++k) expected_euler += 2 - 2 * graph.independent_cycles(k);
-    expected_euler -= shape.open_ends;
-    EXPECT_EQ(initial.open_ends, shape.open_ends) << "open ends decided from the cloud";
-    EXPECT_EQ(s.euler_characteristic, expected_euler);
-    EXPECT_EQ(s.boundary_loops, size_t(shape.open_ends));
-    // Irregular vertices only where blocks and caps are, and as many at every level.
-    for (int v : irregular_vertices(mesh)) EXPECT_TRUE(initial.irregular_allowed[v]) << "vertex " << v;
+    MeshStatistics s = expect_initial_topology(initial, graph, shape);
+    // As many irregular vertices at every level.
     if (level == 0) irregular_at_first_level = s.irregular_vertices;
     else EXPECT_EQ(s.irregular_vertices, irregular_at_first_level);
     // Oriented out of the cloud: the mesh winds once, positively, around
@@ -123,13 +133,7 @@ TEST_P(JunctionTopology, HoldsAtAnyValence) {
     InitialMeshOptions options;
     options.target_vertices = level == 0 ? 1 : 4000;
     InitialMesh initial = build_initial_mesh(graph, bones, shape.cloud, options, c.name);
-    MeshStatistics s = mesh_statistics(initial.mesh);
-    EXPECT_EQ(s.quad_fraction, 1.0);
-    EXPECT_EQ(s.non_manifold_vertices, 0u);
-    EXPECT_EQ(s.components, 1u);
-    EXPECT_EQ(s.euler_characteristic, 2 - 2 * graph.independent_cycles(0) - shape.open_ends);
-    EXPECT_EQ(s.boundary_loops, size_t(shape.open_ends));
-    for (int v : irregular_vertices(initial.mesh)) EXPECT_TRUE(initial.irregular_allowed[v]) << "vertex " << v;
+    MeshStatistics s = expect_initial_topology(initial, graph, shape);
     size_t budget = 0;
     const SkeletonGraph& built = initial.skeleton.graph;
     for (size_t node = 0; node < built.node_count(); ++node) {

@@ -105,8 +105,8 @@ BlockOrientation orient_cube_block(const std::vector<Eigen::Vector3d>& bone_dire
 }
 
 std::vector<Port> add_cube_block(QuadSoup& soup, const Eigen::Vector3d& center, double size,
-                                     const BlockOrientation& orientation,
-                                     const std::function<double(const Eigen::Vector3d&)>& reach) {
+                                 const BlockOrientation& orientation,
+                                 const std::function<double(const Eigen::Vector3d&)>& reach, bool closed) {
   std::map<std::array<int, 3>, int> grid_vertex;
   auto vertex = [&](const Eigen::Vector3i& g) {
     std::array<int, 3> key{g.x(), g.y(), g.z()};
@@ -131,11 +131,8 @@ std::vector<Port> add_cube_block(QuadSoup& soup, const Eigen::Vector3d& center, 
     std::array<int, 8> ring;
     for (int k = 0; k < 8; ++k) ring[k] = vertex(normal + ring_xy[k][0] * u + ring_xy[k][1] * v);
     int bone = bone_of_face[face];
-    if (bone < 0) {
-      int middle = vertex(normal);
-      for (int k = 0; k < 4; ++k) soup.quads.push_back({middle, ring[2 * k], ring[2 * k + 1], ring[(2 * k + 2) % 8]});
-      continue;
-    }
+    if (bone < 0 || closed) soup.add_quad_fan(vertex(normal), std::vector<int>(ring.begin(), ring.end()));
+    if (bone < 0) continue;
     Port& port = ports[bone];
     port.ring = ring;
     port.outward = orientation.rotation * normal.cast<double>();

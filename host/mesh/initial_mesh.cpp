@@ -30,11 +30,13 @@ constexpr double kPortWeight = 1.4;
 // normal gets the cube block (docs/CONSTRUCTION.md, section 3).
 constexpr double kCubeFitDegrees = 25.0;
 
-std::string node_name(const SkeletonGraph& graph, int node) {
+std::string point_text(const Eigen::Vector3d& p) {
   std::ostringstream s;
-  s << "skeleton node at (" << graph.positions[node].transpose() << ")";
+  s << "(" << p.transpose() << ")";
   return s.str();
 }
+
+std::string node_name(const SkeletonGraph& graph, int node) { return "skeleton node at " + point_text(graph.positions[node]); }
 
 //! A point at arc length s along a polyline, with the unit tangent there.
 std::pair<Eigen::Vector3d, Eigen::Vector3d> point_at(const std::vector<Eigen::Vector3d>& line, double s) {
@@ -96,11 +98,14 @@ class MeshAssembler {
         cube = orient_cube_block(bones.directions);
         cube_fits = cube.worst_cosine >= std::cos(kCubeFitDegrees * M_PI / 180.0);
       }
-      if (cube_fits && !closed) {
-        auto reach = [&](const Eigen::Vector3d& direction) {
-          return options_.start_fraction * distance_to_cloud(center, direction, size / options_.start_fraction);
-        };
-        ports = add_cube_block(soup_, center, size, cube, reach);
+      // Where tubes overlap, the cloud can be thinner around the node than
+      // any bone's radius (below a moved crotch): each block vertex stays
+      // at the start fraction of the way to the cloud in its direction.
+      auto reach = [&](const Eigen::Vector3d& direction, double wanted) {
+        return options_.start_fraction * distance_to_cloud(center, direction, wanted / options_.start_fraction);
+      };
+      if (cube_fits) {
+        ports = add_cube_block(soup_, center, size, cube, [&](const Eigen::Vector3d& d) { return reach(d, size); }, closed);
       } else {
         JunctionLayout layout;
         try {
@@ -108,12 +113,6 @@ class MeshAssembler {
         } catch (const UnsupportedError& e) {
           throw UnsupportedError(source_ + ": " + node_name(graph_, int(node)) + ": " + e.what());
         }
-        // Where tubes overlap, the cloud can be thinner around the node than
-        // any bone's radius (below a moved crotch): each block vertex stays
-        // at the start fraction of the way to the cloud in its direction.
-        auto reach = [&](const Eigen::Vector3d& direction, double wanted) {
-          return options_.start_fraction * distance_to_cloud(center, direction, wanted / options_.start_fraction);
-        };
         ports = add_junction_block(soup_, center, layout, bones, reach, closed);
       }
       const auto& neighbours = graph_.neighbours[node];
@@ -460,8 +459,8 @@ QuadMesh to_openmesh(const QuadSoup& soup, const std::string& source) {
     auto face = mesh.add_face(std::vector<QuadMesh::VertexHandle>{handles[q[0]], handles[q[1]], handles[q[2]], handles[q[3]]});
     if (!face.is_valid())
       throw UnsupportedError(source + ": the initial mesh is not a manifold at quad " + std::to_string(f) +
-                             " (at (" + [&] { std::ostringstream s; s << soup.vertices[size_t(q[0])].transpose(); return s.str(); }() +
-                             ")): two tubes or blocks of this skeleton overlap there");
+                             " (at " + point_text(soup.vertices[size_t(q[0])]) +
+                             "): two tubes or blocks of this skeleton overlap there");
   }
   return mesh;
 }
@@ -522,11 +521,13 @@ InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment&
   std::unique_ptr<PointIndex<float>> own_index;
   if (!cloud_index) cloud_index = (own_index = std::make_unique<PointIndex<float>>(cloud.points)).get();
   // Checked before acute junctions move: a node's valence is what the user gave.
-  for (size_t node = 0; node < graph.node_count(); ++node)
-    if (int(graph.neighbours[node].size()) > kMaxJunctionValence)
-      throw UnsupportedError(source + ": " + node_name(graph, int(node)) + ": a junction of valence " +
-                             std::to_string(graph.neighbours[node].size()) + " (more than " +
-                             std::to_string(kMaxJunctionValence) + " bones) is not supported");
+  for (size_t node = 0; node < graph.node_count(); ++node) {
+    try {
+      check_junction_valence(graph.neighbours[node].size());
+    } catch (const UnsupportedError& e) {
+      throw UnsupportedError(source + ": " + node_name(graph, int(node)) + ": " + e.what());
+    }
+  }
   TubeSkeleton skeleton = spread_acute_junctions(graph, bones, options.min_junction_angle, source);
   MeshAssembler assembler(skeleton, cloud, *cloud_index, options, source);
   assembler.build_blocks(options.stage == "blocks");

@@ -37,10 +37,12 @@ std::vector<Port> add_junction_block(QuadSoup& soup, const Eigen::Vector3d& cent
     int middle = place(layout.filler_directions[f]);
     const auto& corners = layout.filler_corners[f];
     const auto& edges = layout.filler_edges[f];
-    const size_t k_count = corners.size();
-    for (size_t k = 0; k < k_count; ++k)
-      soup.quads.push_back({middle, edge_vertex[size_t(edges[(k + k_count - 1) % k_count])],
-                            corner_vertex[size_t(corners[k])], edge_vertex[size_t(edges[k])]});
+    std::vector<int> boundary;
+    for (size_t k = 0; k < corners.size(); ++k) {
+      boundary.push_back(edge_vertex[size_t(edges[(k + corners.size() - 1) % corners.size()])]);
+      boundary.push_back(corner_vertex[size_t(corners[k])]);
+    }
+    soup.add_quad_fan(middle, boundary);
   }
 
   std::vector<Port> ports(bones.directions.size());
@@ -63,11 +65,10 @@ std::vector<Port> add_junction_block(QuadSoup& soup, const Eigen::Vector3d& cent
     port.outward = normal.norm() > 1e-12 ? normal.normalized() : bones.directions[b];
     port.radius = 0;
     for (int id : port.ring) port.radius += (soup.vertices[size_t(id)] - port.center).norm() / 8.0;
-    if (closed) {
-      int middle = soup.add_vertex(port.center + 0.5 * port.radius * port.outward, true);
-      for (int k = 0; k < 4; ++k)
-        soup.quads.push_back({middle, port.ring[size_t(2 * k + 1)], port.ring[size_t((2 * k + 2) % 8)],
-                              port.ring[size_t((2 * k + 3) % 8)]});
+    if (closed) {  // the ring starts at a corner; the fan at a midpoint
+      std::vector<int> boundary(port.ring.begin() + 1, port.ring.end());
+      boundary.push_back(port.ring[0]);
+      soup.add_quad_fan(soup.add_vertex(port.center + 0.5 * port.radius * port.outward, true), boundary);
     }
   }
   return ports;

@@ -78,6 +78,19 @@ std::vector<Facet> hull_facets(const std::vector<Vec>& d, double eps) {
   return facets;
 }
 
+// Coplanarity tolerances for the hull, tightest first: nearly coplanar bones
+// may need a looser one to give a sphere.
+constexpr double kHullTolerances[] = {1e-9, 1e-6, 1e-4};
+
+//! The hull with the tightest tolerance that gives a sphere; empty if none.
+std::vector<Facet> sphere_hull(const std::vector<Vec>& d) {
+  for (double eps : kHullTolerances) {
+    std::vector<Facet> facets = hull_facets(d, eps);
+    if (!facets.empty()) return facets;
+  }
+  return {};
+}
+
 struct HullEdge {
   int a, b;        //!< a < b
   int facet_ab;    //!< the facet holding the directed edge a -> b
@@ -357,12 +370,16 @@ class LayoutSearch {
 
 }  // namespace
 
+void check_junction_valence(size_t valence) {
+  if (valence > size_t(kMaxJunctionValence))
+    throw UnsupportedError("a junction of valence " + std::to_string(valence) + " (more than " +
+                           std::to_string(kMaxJunctionValence) + " bones) is not supported");
+}
+
 JunctionLayout layout_junction(const std::vector<Vec>& directions, const std::vector<double>& radii) {
   const size_t n = directions.size();
   if (n < 3) throw UnsupportedError("a junction block needs at least 3 bones");
-  if (int(n) > kMaxJunctionValence)
-    throw UnsupportedError("a junction of valence " + std::to_string(n) + " (more than " +
-                           std::to_string(kMaxJunctionValence) + " bones) is not supported");
+  check_junction_valence(n);
   for (size_t a = 0; a < n; ++a)
     for (size_t b = a + 1; b < n; ++b)
       if (directions[a].dot(directions[b]) > std::cos(M_PI / 180))
@@ -375,9 +392,7 @@ JunctionLayout layout_junction(const std::vector<Vec>& directions, const std::ve
   std::vector<double> point_radii = radii;
   double mean_radius = std::accumulate(radii.begin(), radii.end(), 0.0) / double(n);
   for (int filler = 0; filler < 2 * kMaxJunctionValence; ++filler) {
-    std::vector<Facet> facets;
-    for (double eps : {1e-9, 1e-6, 1e-4})
-      if (!(facets = hull_facets(points, eps)).empty()) break;
+    std::vector<Facet> facets = sphere_hull(points);
     if (facets.empty()) break;
     double widest = 0;
     Vec centre;
@@ -399,11 +414,10 @@ JunctionLayout layout_junction(const std::vector<Vec>& directions, const std::ve
   for (size_t count : {points.size(), n}) {
     std::vector<Vec> used(points.begin(), points.begin() + long(count));
     std::vector<double> used_radii(point_radii.begin(), point_radii.begin() + long(count));
-    for (double eps : {1e-9, 1e-6, 1e-4}) {
+    for (double eps : kHullTolerances) {  // a looser hull may allow a layout a tighter one does not
       std::vector<Facet> facets = hull_facets(used, eps);
-      if (facets.empty()) continue;
       JunctionLayout layout;
-      if (LayoutSearch(used, used_radii, n, std::move(facets)).run(layout)) {
+      if (!facets.empty() && LayoutSearch(used, used_radii, n, std::move(facets)).run(layout)) {
         if (!found || layout.score < best.score) best = std::move(layout);
         found = true;
         break;

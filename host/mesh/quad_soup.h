@@ -18,6 +18,14 @@ struct QuadSoup {
     irregular_allowed.push_back(on_block_or_cap);
     return int(vertices.size()) - 1;
   }
+
+  //! Closes a polygon of a split face (counter-clockwise `boundary`, even
+  //! positions its edge midpoints, odd ones its corners) with one quad per
+  //! corner round `middle`.
+  void add_quad_fan(int middle, const std::vector<int>& boundary) {
+    const size_t n = boundary.size();
+    for (size_t k = 0; k < n; k += 2) quads.push_back({middle, boundary[k], boundary[k + 1], boundary[(k + 2) % n]});
+  }
 };
 
 //! Where a tube attaches: a ring of 8 vertices, counter-clockwise around
