@@ -16,6 +16,7 @@
 #include "mesh/open_ends.h"
 #include "mesh/quad_soup.h"
 #include "mesh/refinement.h"
+#include "metrics/face_intersections.h"
 #include "metrics/mesh_metrics.h"
 #include "skeleton/acute_junctions.h"
 
@@ -27,8 +28,11 @@ constexpr int kRing = 8;  // vertices around a tube in the rough mesh
 // so neighbouring ports' tubes do not crowd the block edge between them.
 constexpr double kPortWeight = 1.4;
 // A junction whose bones all lie within this angle of their own cube face's
-// normal gets the cube block (docs/CONSTRUCTION.md, section 3).
-constexpr double kCubeFitDegrees = 25.0;
+// normal gets the cube block (docs/CONSTRUCTION.md, section 3; DESIGN.md has
+// the measurements): 25 degrees from five bones on, 10 below. The forks the
+// acute-junction step creates (three bones, two of them close) are better
+// served by the general block even 10 to 25 degrees off a cube.
+constexpr double kCubeFitDegrees = 25.0, kCubeFitDegreesBelowFive = 10.0;
 
 std::string point_text(const Eigen::Vector3d& p) {
   std::ostringstream s;
@@ -69,6 +73,10 @@ std::vector<Eigen::Vector3d> sub_polyline(const std::vector<Eigen::Vector3d>& li
   return out;
 }
 
+//! Which block a junction of at most six bones gets: the cube only where
+//! its bones fit one (kCubeFitDegrees), or the cube wherever it can be built.
+enum class BlockPreference { kFitted, kCube };
+
 class MeshAssembler {
  public:
   MeshAssembler(const TubeSkeleton& skeleton, const PointCloud& cloud, const PointIndex<float>& cloud_index,
@@ -76,7 +84,10 @@ class MeshAssembler {
       : graph_(skeleton.graph), skeleton_(skeleton), cloud_(cloud), options_(options), source_(source),
         cloud_index_(cloud_index), spacing_(sample_spacing()) {}
 
-  void build_blocks(bool closed) {
+  //! Returns whether the preference mattered: some junction of at most six
+  //! bones got the general block.
+  bool build_blocks(bool closed, BlockPreference preference) {
+    bool preference_mattered = false;
     for (size_t node = 0; node < graph_.node_count(); ++node) {
       if (graph_.kind(int(node)) != NodeKind::kJunction) continue;
       const Eigen::Vector3d& center = graph_.positions[node];
@@ -85,10 +96,10 @@ class MeshAssembler {
         bones.directions.push_back((graph_.positions[next] - center).normalized());
         bones.tube_radii.push_back(tube_radius(int(node), next));
       }
-      // Where the bones fit a cube's faces (every bone within
-      // kCubeFitDegrees of its own face's normal), the cube block: measured
-      // on the existing shapes, it is the better one there. Otherwise the
-      // general block (junction_layout.h): any valence, any directions.
+      // Where the bones fit a cube's faces (every bone near its own face's
+      // normal), the cube block: measured on the existing shapes, it is the
+      // better one there. Otherwise the general block (junction_layout.h):
+      // any valence, any directions.
       std::vector<Port> ports;
       double largest_ring = *std::max_element(bones.tube_radii.begin(), bones.tube_radii.end());
       double size = largest_ring / 0.76;  // the cube's ring lies at 0.76 of its size from its axis
@@ -96,7 +107,9 @@ class MeshAssembler {
       bool cube_fits = bones.directions.size() <= 6;
       if (cube_fits) {
         cube = orient_cube_block(bones.directions);
-        cube_fits = cube.worst_cosine >= std::cos(kCubeFitDegrees * M_PI / 180.0);
+        double fit = bones.directions.size() >= 5 ? kCubeFitDegrees : kCubeFitDegreesBelowFive;
+        cube_fits = preference == BlockPreference::kCube || cube.worst_cosine >= std::cos(fit * M_PI / 180.0);
+        preference_mattered = preference_mattered || !cube_fits;
       }
       // Where tubes overlap, the cloud can be thinner around the node than
       // any bone's radius (below a moved crotch): each block vertex stays
@@ -121,6 +134,7 @@ class MeshAssembler {
         blend_length_[{int(node), neighbours[k]}] = blend_length(int(node), int(k), bones.directions, ports[k], size);
       }
     }
+    return preference_mattered;
   }
 
   void build_chains() {
@@ -513,6 +527,19 @@ int refinement_levels(const QuadMesh& mesh, const InitialMeshOptions& options) {
   return levels;
 }
 
+//! The mesh before refinement, with the assembler that built it (refinement
+//! needs it to move vertices back inside the cloud).
+struct CoarseMesh {
+  std::unique_ptr<MeshAssembler> assembler;
+  InitialMesh result;
+  bool preference_mattered = false;  //!< some junction of at most six bones got the general block
+};
+
+CoarseMesh assemble_coarse_mesh(const TubeSkeleton& skeleton, const PointCloud& cloud, const PointIndex<float>& cloud_index,
+                                const InitialMeshOptions& options, const std::string& source, BlockPreference preference);
+//! The coarse mesh refined `levels` times, folds relaxed, moved back inside the cloud.
+QuadMesh refined(const CoarseMesh& coarse, int levels);
+
 }  // namespace
 
 InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment& bones, const PointCloud& cloud,
@@ -529,27 +556,58 @@ InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment&
     }
   }
   TubeSkeleton skeleton = spread_acute_junctions(graph, bones, options.min_junction_angle, source);
-  MeshAssembler assembler(skeleton, cloud, *cloud_index, options, source);
-  assembler.build_blocks(options.stage == "blocks");
-  InitialMesh result;
+  // The cube where the bones fit it, the general block elsewhere; where that
+  // leaves faces crossing and the cube could serve more junctions, the mesh
+  // with the cube wherever it can is built too, and the one with fewer
+  // crossing pairs is kept (docs/DESIGN.md: neither block is cleaner on
+  // every shape and scan). Both are compared refined once (the default
+  // resolution), whatever resolution is asked for, so every resolution
+  // makes the same choice.
+  CoarseMesh coarse = assemble_coarse_mesh(skeleton, cloud, *cloud_index, options, source, BlockPreference::kFitted);
+  if (coarse.preference_mattered && options.stage == "refined") {
+    size_t crossings = intersecting_face_pairs(refined(coarse, 1)).size();
+    if (crossings > 0) {
+      CoarseMesh cubes = assemble_coarse_mesh(skeleton, cloud, *cloud_index, options, source, BlockPreference::kCube);
+      if (intersecting_face_pairs(refined(cubes, 1)).size() < crossings) coarse = std::move(cubes);
+    }
+  }
+  InitialMesh& result = coarse.result;
+  if (options.stage == "refined") {
+    result.refinement_levels = refinement_levels(result.mesh, options);
+    result.mesh = refined(coarse, result.refinement_levels);
+    result.irregular_allowed.resize(result.mesh.n_vertices(), false);
+  }
+  return std::move(result);
+}
+
+namespace {
+
+QuadMesh refined(const CoarseMesh& coarse, int levels) {
+  QuadMesh mesh = coarse.result.mesh;
+  refine_catmull_clark(mesh, levels);
+  relax_folds(mesh);
+  coarse.assembler->keep_inside_cloud(mesh);
+  relax_folds(mesh);  // moving back inside can fold a face in a tight crease
+  return mesh;
+}
+
+CoarseMesh assemble_coarse_mesh(const TubeSkeleton& skeleton, const PointCloud& cloud, const PointIndex<float>& cloud_index,
+                                const InitialMeshOptions& options, const std::string& source, BlockPreference preference) {
+  CoarseMesh coarse;
+  coarse.assembler = std::make_unique<MeshAssembler>(skeleton, cloud, cloud_index, options, source);
+  MeshAssembler& assembler = *coarse.assembler;
+  coarse.preference_mattered = assembler.build_blocks(options.stage == "blocks", preference);
   if (options.stage == "blocks") {
     if (assembler.soup().quads.empty()) throw InputError(source + ": the skeleton has no junction, so there are no blocks");
   } else {
     assembler.build_chains();
   }
-  result.mesh = to_openmesh(assembler.soup(), source);
-  result.skeleton = std::move(skeleton);
-  result.open_ends = assembler.open_ends();
-  result.irregular_allowed = assembler.soup().irregular_allowed;
-  if (options.stage == "refined") {
-    result.refinement_levels = refinement_levels(result.mesh, options);
-    refine_catmull_clark(result.mesh, result.refinement_levels);
-    relax_folds(result.mesh);
-    assembler.keep_inside_cloud(result.mesh);
-    relax_folds(result.mesh);  // moving back inside can fold a face in a tight crease
-    result.irregular_allowed.resize(result.mesh.n_vertices(), false);
-  }
-  return result;
+  coarse.result.mesh = to_openmesh(assembler.soup(), source);
+  coarse.result.skeleton = skeleton;
+  coarse.result.open_ends = assembler.open_ends();
+  coarse.result.irregular_allowed = assembler.soup().irregular_allowed;
+  return coarse;
 }
 
+}  // namespace
 }  // namespace mcquad
