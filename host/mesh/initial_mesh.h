@@ -33,9 +33,10 @@ struct InitialMesh {
   TubeSkeleton skeleton;                //!< the skeleton the mesh was built on (acute junctions moved)
 };
 
-//! Builds the paper's rough quad mesh (Fig. 1) automatically: a block of six
-//! face groups at every junction, rotated so each bone gets the face group
-//! that faces it best; chains swept ring by ring (8 vertices a ring) with
+//! Builds the paper's rough quad mesh (Fig. 1) automatically: a block at
+//! every junction with one quad facing each bone (a rotated cube where the
+//! bones fit one, else junction_layout.h's polyhedron; where that leaves
+//! faces crossing, the cube wherever possible if that crosses less); chains swept ring by ring (8 vertices a ring) with
 //! rotation-minimizing frames; chains between two ports and pure loops closed
 //! with the cyclic offset of least twist, the rest spread along the chain;
 //! ends capped by a face group or left open; then Catmull-Clark refinement.
