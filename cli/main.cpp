@@ -4,8 +4,8 @@
 #include <filesystem>
 #include <iostream>
 
-#include "cells/cell_tree.h"
 #include "core/errors.h"
+#include "core/progress.h"
 #include "generate/shapes.h"
 #include "io/file_utils.h"
 #include "io/mesh_io.h"
@@ -13,9 +13,8 @@
 #include "io/skeleton_io.h"
 #include "metrics/mesh_metrics.h"
 #include "pipeline/fit.h"
-#include "pipeline/prepare.h"
+#include "pipeline/measure.h"
 #include "pipeline/surfaces.h"
-#include "skeleton/skeleton_graph.h"
 #ifdef MCQUAD_WITH_OPENCL
 #include "opencl/device_selection.h"
 #endif
@@ -46,6 +45,7 @@ struct FitCommand {
   FitOptions options;
   double alpha_degrees = 10.0;
   double junction_degrees = 75.0;
+  bool strict = false;
 
   void add_options(CLI::App* app, bool evolution) {
     app->add_option("POINTS", points, "point cloud (.ply, .xyz, .txt, .csv, .obj, .off)")->required();
@@ -70,6 +70,7 @@ struct FitCommand {
           ->check(CLI::IsMember({"blocks", "extruded", "refined"}))->capture_default_str();
       return;
     }
+    app->add_flag("--strict", strict, "exit with code 7 (after writing the outputs) when a check of the verdict fails");
     auto& e = options.evolution;
     app->add_option("--backend", backend, "auto (OpenCL if a device exists), serial or opencl")
         ->check(CLI::IsMember({"auto", "serial", "opencl"}))->capture_default_str();
@@ -118,22 +119,26 @@ struct FitCommand {
     if (!options.surfaces.control_nets_path.empty()) check_output_path(options.surfaces.control_nets_path, kMeshExtensions);
     options.evolve = evolution;
     options.evolution.alpha_max = alpha_degrees * M_PI / 180.0;
-    options.evolution.mode = mode == "paper" ? EvolutionParameters::Mode::kPaper : EvolutionParameters::Mode::kRobust;
+    options.evolution.mode = evolution_mode_from_name(mode, "--mode");
     options.evolution.mean_projection = projection == "mean";
     options.evolution.fill_holes = fill_holes == "on";
     options.evolution.crossing_guard = crossing_guard == "on";
     options.evolution.own_cells = own_cells == "on";
     options.evolution.local_epsilon = local_epsilon == "on";
     options.initial.min_junction_angle = junction_degrees * M_PI / 180.0;
-    options.backend = backend == "serial" ? BackendKind::kSerial : backend == "opencl" ? BackendKind::kOpenCL : BackendKind::kAuto;
-    options.initial.ends = ends == "open" ? EndMode::kOpen : ends == "capped" ? EndMode::kCapped : EndMode::kAuto;
+    options.backend = backend_from_name(backend, "--backend");
+    options.initial.ends = end_mode_from_name(ends, "--ends");
     options.initial.stage = stage;
     options.measure = evolution;
     FitResult result = run_fit(points, skeleton, options);
     write_mesh(output, result.mesh);
     if (!report.empty()) write_text_atomically(report, result.report.dump(2) + "\n");
     print_summary(result.report);
-    return kExitOk;
+    if (!result.verdict) return kExitOk;
+    for (const std::string& line : verdict_warnings(*result.verdict)) warn(line);
+    std::printf("verdict: %s (%zu of %zu checks passed)\n", result.verdict->passed ? "pass" : "FAIL",
+                result.verdict->checks.size() - result.verdict->failures().size(), result.verdict->checks.size());
+    return strict && !result.verdict->passed ? kExitVerdict : kExitOk;
   }
 
   void print_summary(const nlohmann::json& r) const {
@@ -190,11 +195,9 @@ int run_metrics(const std::string& mesh_path, const std::string& points_path, co
                 const std::string& surface_path, size_t leaf_size, const std::string& json_path) {
   QuadMesh mesh = read_mesh(mesh_path);
   PointCloud cloud = read_point_cloud(points_path);
-  CellTree cells = build_cell_tree(cloud, cell_leaf_size(leaf_size, cloud.size()));
-  std::unique_ptr<SkeletonGraph> graph;
-  if (!skeleton_path.empty())
-    graph = std::make_unique<SkeletonGraph>(build_skeleton_graph(read_skeleton(skeleton_path), skeleton_path));
-  nlohmann::json metrics = to_json(measure_quality(mesh, cloud, cells, graph.get()));
+  std::unique_ptr<SkeletonData> skeleton;
+  if (!skeleton_path.empty()) skeleton = std::make_unique<SkeletonData>(read_skeleton(skeleton_path));
+  nlohmann::json metrics = measure_mesh(mesh, cloud, skeleton.get(), skeleton_path, leaf_size);
   if (!surface_path.empty()) {
     nlohmann::json description;
     try {

@@ -90,6 +90,29 @@ TEST(Cli, SameSeedSameOutputByteForByte) {
   }
 }
 
+TEST(Cli, VerdictWarnsAndStrictFailsAfterWritingTheOutputs) {
+  test::TempDir dir;
+  ASSERT_EQ(mcquad("generate t-shape -o " + dir.file("") + " --points 20000").code, 0);
+  std::string inputs = dir.file("t-shape.ply") + " " + dir.file("t-shape.skeleton.obj") + " --backend serial";
+  CliRun good = mcquad("fit " + inputs + " -o " + dir.file("good.obj") + " --strict");
+  EXPECT_EQ(good.code, kExitOk) << good.output;
+  EXPECT_NE(good.output.find("verdict: pass (8 of 8 checks passed)"), std::string::npos) << good.output;
+  EXPECT_EQ(good.output.find("check failed"), std::string::npos) << good.output;
+  // No iterations: the initial mesh inside the tube, far from the cloud.
+  std::string unfitted = "fit " + inputs + " --iterations 0 -o " + dir.file("far.obj") + " --report " + dir.file("far.json");
+  CliRun lenient = mcquad(unfitted);
+  EXPECT_EQ(lenient.code, kExitOk) << lenient.output;
+  EXPECT_NE(lenient.output.find("mcquad: warning: check failed: uncovered_cloud = "), std::string::npos) << lenient.output;
+  EXPECT_NE(lenient.output.find("verdict: FAIL"), std::string::npos) << lenient.output;
+  std::filesystem::remove(dir.file("far.obj"));
+  CliRun strict = mcquad(unfitted + " --strict");
+  EXPECT_EQ(strict.code, kExitVerdict) << strict.output;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("far.obj")));
+  std::ifstream report(dir.file("far.json"));
+  auto json = nlohmann::json::parse(report);
+  EXPECT_FALSE(json["verdict"]["passed"].get<bool>());
+}
+
 TEST(Cli, BadInputsGiveOneLineAndDocumentedCodes) {
   test::TempDir dir;
   ASSERT_EQ(mcquad("generate tube -o " + dir.file("") + " --points 3000").code, 0);

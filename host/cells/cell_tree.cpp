@@ -162,7 +162,8 @@ CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size, bool pad_box
   cells.node_bounds.reserve(6 * nodes);
   cells.node_children.reserve(2 * nodes);
   cells.cell_offsets.push_back(0);
-  Flattener(cloud, tree, cells, pad_boxes ? float(typical_spacing(cloud, tree)) : 0.0f).flatten(tree.root_node, 0);
+  cells.point_spacing = typical_spacing(cloud, tree);
+  Flattener(cloud, tree, cells, pad_boxes ? float(cells.point_spacing) : 0.0f).flatten(tree.root_node, 0);
   if (cells.depth > MCQ_MAX_TREE_DEPTH)
     throw UnsupportedError("the cell tree is " + std::to_string(cells.depth) + " levels deep, more than the " +
                            std::to_string(MCQ_MAX_TREE_DEPTH) + " the traversal supports (many duplicate points?)");

@@ -19,6 +19,7 @@ struct CellTree {
   std::vector<float> node_bounds;         //!< 6 per node: min xyz, max xyz (leaves padded, see build_cell_tree)
   std::vector<int32_t> node_children;     //!< 2 per node; a leaf stores -1 - cell, -1
   int depth = 0;                          //!< longest root-to-leaf path, in edges
+  double point_spacing = 0;               //!< the cloud's median nearest-neighbour distance (sampled)
 
   size_t cell_count() const { return cell_offsets.empty() ? 0 : cell_offsets.size() - 1; }
   size_t node_count() const { return node_children.size() / 2; }

@@ -39,6 +39,7 @@ enum ExitCode : int {
   kExitUnsupported = 4,
   kExitDevice = 5,
   kExitOutput = 6,
+  kExitVerdict = 7,  //!< --strict: the outputs are written, but a check of the verdict failed
 };
 
 }  // namespace mcquad

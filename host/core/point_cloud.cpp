@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <numeric>
 
+#include "core/errors.h"
+
 namespace mcquad {
 namespace {
 
@@ -54,6 +56,14 @@ void sort_spatially(PointCloud& cloud) {
   };
   permute(cloud.points);
   if (cloud.normals.size() == cloud.size()) permute(cloud.normals);
+}
+
+void check_point_cloud(const PointCloud& cloud, const std::string& name) {
+  if (cloud.empty()) throw InputError(name + ": the point cloud is empty");
+  for (size_t i = 0; i < cloud.size(); ++i)
+    if (!cloud.points[i].allFinite()) throw InputError(name + ": point " + std::to_string(i) + " has a NaN or infinite coordinate");
+  if (!cloud.normals.empty() && cloud.normals.size() != cloud.size())
+    throw InputError(name + ": " + std::to_string(cloud.normals.size()) + " normals for " + std::to_string(cloud.size()) + " points");
 }
 
 std::pair<Eigen::Vector3f, Eigen::Vector3f> bounding_box(const PointCloud& cloud) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <string>
 #include <vector>
 
 namespace mcquad {
@@ -22,6 +23,12 @@ struct PointCloud {
 //! touches far fewer cache lines. Scans come in arbitrary order, and no
 //! stage needs the original one.
 void sort_spatially(PointCloud& cloud);
+
+//! InputError naming `name` for a cloud a fit cannot start from: empty, a
+//! non-finite coordinate (the first one's index given), or normals that are
+//! not one per point. The readers check as they read; this is for clouds
+//! made in memory.
+void check_point_cloud(const PointCloud& cloud, const std::string& name);
 
 //! Axis-aligned bounding box of a cloud (min, max); zero box for an empty one.
 std::pair<Eigen::Vector3f, Eigen::Vector3f> bounding_box(const PointCloud& cloud);

@@ -153,6 +153,7 @@ QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, co
                                     cells.points.data(), cells.cell_centroids.data(), cells.cell_normals.data(), q);
   }
   m.error_level = mesh.n_vertices() ? sum / mesh.n_vertices() : 0.0;
+  m.cloud_spacing = cells.point_spacing;
   if (skeleton) m.inward_faces = long(inward_faces(mesh, *skeleton));
   m.folded_edges = folded_edges(mesh);
   std::vector<std::pair<int, int>> crossing = intersecting_face_pairs(mesh);
@@ -205,6 +206,7 @@ nlohmann::json to_json(const QualityMetrics& m) {
                       {"mesh_to_cloud", to_json(m.mesh_to_cloud)},
                       {"cloud_to_mesh", to_json(m.cloud_to_mesh)},
                       {"error_level", m.error_level},
+                      {"cloud_spacing", m.cloud_spacing},
                       {"intersecting_face_pairs", m.intersecting_face_pairs},
                       {"folded_edges", m.folded_edges},
                       {"quad_shape", to_json(m.quad_shape)}};

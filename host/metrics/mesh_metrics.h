@@ -35,6 +35,7 @@ struct QualityMetrics {
   DistanceSummary mesh_to_cloud;
   DistanceSummary cloud_to_mesh;   //!< over at most a million evenly strided cloud points
   double error_level = 0;          //!< the paper's e-bar
+  double cloud_spacing = 0;        //!< the cloud's median nearest-neighbour distance: no mesh is nearer on average
   long inward_faces = -1;          //!< faces whose normal points into the tube (-1: no skeleton)
   size_t folded_edges = 0;         //!< edges between faces folded over each other
   size_t intersecting_face_pairs = 0;

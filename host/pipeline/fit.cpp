@@ -6,11 +6,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <filesystem>
 
 #include "cells/cell_tree.h"
 #include "core/errors.h"
+#include "core/progress.h"
 #include "evolution/evolve.h"
 #include "io/mesh_io.h"
 #include "io/point_cloud_io.h"
@@ -19,6 +21,7 @@
 #include "pipeline/prepare.h"
 #include "pipeline/surfaces.h"
 #include "metrics/mesh_metrics.h"
+#include "metrics/verdict.h"
 #include "skeleton/bone_assignment.h"
 #include "skeleton/skeleton_graph.h"
 
@@ -55,7 +58,10 @@ class StageTimer {
         timer->resident_megabytes[stage] = current_resident_megabytes();
       }
     } record{this, stage, start};
-    return work();
+    report_stage(stage, false);
+    auto result = work();
+    report_stage(stage, true);
+    return result;
   }
   nlohmann::json seconds = nlohmann::json::object();
   //! Peak resident memory of the process when each stage ended: the first
@@ -94,15 +100,41 @@ nlohmann::json parameters_json(const FitOptions& o, double epsilon, double media
           {"median_radius", median_radius}};
 }
 
-}  // namespace
+void check_range(const char* option, double value, double lo, double hi) {
+  if (!(value >= lo && value <= hi))
+    throw InputError(std::string(option) + ": " + std::to_string(value) + " is outside [" + std::to_string(lo) + ", " +
+                     std::to_string(hi) + "]");
+}
 
-FitResult run_fit(const std::string& points_path, const std::string& skeleton_path, const FitOptions& options) {
-  if (options.evolve && options.initial.stage != "refined") throw InputError("--stage applies to 'mcquad init' only");
-  StageTimer timer;
-  PointCloud cloud = timer.run("read_points", [&] { return read_point_cloud(points_path); });
+//! Options out of range or contradicting each other, refused before any
+//! work. The CLI checks the same ranges while parsing; this holds them for
+//! every other caller (the Python package).
+void check_fit_options(const FitOptions& options) {
+  const auto& e = options.evolution;
+  const auto& i = options.initial;
+  check_range("start_fraction", i.start_fraction, 0.05, 0.95);
+  check_range("resolution", i.resolution, 0, HUGE_VAL);
+  check_range("min_junction_angle", i.min_junction_angle, 0, 120.0 * M_PI / 180.0 + 1e-12);
+  check_range("relaxation", e.relaxation, 0, 1);
+  check_range("held_back_relaxation", e.held_back_relaxation, 0, 1);
+  check_range("hit_band", e.hit_band, 0, 1);
+  check_range("tolerance", e.tolerance, 0, HUGE_VAL);
+  check_range("cones", e.cones, 1, 64);
+  check_range("generators", e.generators, 1, 64);
+  check_range("alpha_max", e.alpha_max, 0, 89.0 * M_PI / 180.0 + 1e-12);
+  check_range("samples", e.samples, 1, 1024);
+  check_range("epsilon", e.epsilon, 0, HUGE_VAL);
+  check_range("leaf_size", double(options.leaf_size), 0, double(size_t(1) << 20));
+  if (options.evolve && i.stage != "refined") throw InputError("--stage applies to 'mcquad init' only");
+}
+
+//! The stages from the graph on, with the reading already timed.
+FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& timer) {
+  PointCloud& cloud = input.cloud;
+  const std::string& points_path = input.points_name;
+  const std::string& skeleton_path = input.skeleton_name;
   timer.run("sort_points", [&] { sort_spatially(cloud); return 0; });
-  SkeletonData skeleton_data = timer.run("read_skeleton", [&] { return read_skeleton(skeleton_path); });
-  SkeletonGraph graph = build_skeleton_graph(skeleton_data, skeleton_path);
+  SkeletonGraph graph = build_skeleton_graph(input.skeleton, skeleton_path);
   // The index serves the radii and the initial mesh, then goes before the cells are built.
   auto cloud_index = timer.run("point_index", [&] { return std::make_unique<PointIndex<float>>(cloud.points); });
   BoneAssignment bones = timer.run("radius", [&] { return assign_points_to_bones(graph, cloud, skeleton_path, cloud_index.get()); });
@@ -179,7 +211,10 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
                                                                              : evolution.iterations.back().error_level}};
   }
   if (options.measure) {
-    report["metrics"] = timer.run("metrics", [&] { return to_json(measure_quality(result.mesh, cloud, cells, &graph)); });
+    QualityMetrics quality = timer.run("metrics", [&] { return measure_quality(result.mesh, cloud, cells, &graph); });
+    report["metrics"] = to_json(quality);
+    result.verdict = judge_mesh(quality, median_radius);
+    report["verdict"] = to_json(*result.verdict);
   }
   if (!options.surfaces.cad_path.empty() || !options.surfaces.control_nets_path.empty())
     report["surfaces"] = timer.run("surfaces", [&] { return export_surfaces(result.mesh, &cloud, options.surfaces); });
@@ -190,6 +225,51 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
   report["version"] = MCQUAD_VERSION;
   result.report = std::move(report);
   return result;
+}
+
+template <typename Enum>
+Enum from_name(const std::string& name, const std::string& option,
+               std::initializer_list<std::pair<const char*, Enum>> words) {
+  std::string accepted;
+  for (const auto& [word, value] : words) {
+    if (name == word) return value;
+    accepted += std::string(accepted.empty() ? "" : ", ") + word;
+  }
+  throw InputError(option + ": '" + name + "' is not one of " + accepted);
+}
+
+}  // namespace
+
+FitResult run_fit(const std::string& points_path, const std::string& skeleton_path, const FitOptions& options) {
+  check_fit_options(options);
+  StageTimer timer;
+  FitInput input;
+  input.points_name = points_path;
+  input.skeleton_name = skeleton_path;
+  input.cloud = timer.run("read_points", [&] { return read_point_cloud(points_path); });
+  input.skeleton = timer.run("read_skeleton", [&] { return read_skeleton(skeleton_path); });
+  return fit_loaded(std::move(input), options, timer);
+}
+
+FitResult run_fit(FitInput input, const FitOptions& options) {
+  check_fit_options(options);
+  check_point_cloud(input.cloud, input.points_name);
+  StageTimer timer;
+  return fit_loaded(std::move(input), options, timer);
+}
+
+EndMode end_mode_from_name(const std::string& name, const std::string& option) {
+  return from_name<EndMode>(name, option, {{"auto", EndMode::kAuto}, {"open", EndMode::kOpen}, {"capped", EndMode::kCapped}});
+}
+
+BackendKind backend_from_name(const std::string& name, const std::string& option) {
+  return from_name<BackendKind>(name, option,
+                                {{"auto", BackendKind::kAuto}, {"serial", BackendKind::kSerial}, {"opencl", BackendKind::kOpenCL}});
+}
+
+EvolutionParameters::Mode evolution_mode_from_name(const std::string& name, const std::string& option) {
+  using Mode = EvolutionParameters::Mode;
+  return from_name<Mode>(name, option, {{"robust", Mode::kRobust}, {"paper", Mode::kPaper}});
 }
 
 }  // namespace mcquad

@@ -1,12 +1,15 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "core/quad_mesh.h"
 #include "evolution/evolution_backend.h"
 #include "evolution/evolution_parameters.h"
+#include "io/skeleton_io.h"
 #include "mesh/initial_mesh.h"
+#include "metrics/verdict.h"
 #include "pipeline/surfaces.h"
 
 namespace mcquad {
@@ -24,9 +27,20 @@ struct FitOptions {
   SurfaceOutputs surfaces;           //!< B-spline surfaces to write (none by default)
 };
 
+//! What a fit starts from, already in memory (the Python package passes
+//! numpy arrays): the cloud, the skeleton as read, and the names that error
+//! messages and the report give them (a file's path, or a description).
+struct FitInput {
+  PointCloud cloud;
+  SkeletonData skeleton;
+  std::string points_name = "points";
+  std::string skeleton_name = "skeleton";
+};
+
 struct FitResult {
   QuadMesh mesh;
   nlohmann::json report;
+  std::optional<Verdict> verdict;  //!< when measured (mcquad fit; not mcquad init)
 };
 
 //! The whole pipeline: read, skeleton graph, radii, initial mesh, cells,
@@ -34,5 +48,16 @@ struct FitResult {
 //! per-iteration error level and time, backend and device, stage timings,
 //! mesh statistics and quality metrics.
 FitResult run_fit(const std::string& points_path, const std::string& skeleton_path, const FitOptions& options);
+
+//! The same pipeline from a cloud and a skeleton in memory: for the same
+//! data and options, the same mesh as from files, bit for bit. InputError
+//! for an empty cloud, non-finite coordinates or bones naming no node.
+FitResult run_fit(FitInput input, const FitOptions& options);
+
+//! Option words as the CLI and the Python package spell them. InputError
+//! naming `option` and the accepted words for anything else.
+EndMode end_mode_from_name(const std::string& name, const std::string& option = "ends");
+BackendKind backend_from_name(const std::string& name, const std::string& option = "backend");
+EvolutionParameters::Mode evolution_mode_from_name(const std::string& name, const std::string& option = "mode");
 
 }  // namespace mcquad

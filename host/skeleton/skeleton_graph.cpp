@@ -106,6 +106,14 @@ std::vector<Branch> SkeletonGraph::branches() const {
 
 SkeletonGraph build_skeleton_graph(const SkeletonData& data, const std::string& source, double merge_tolerance) {
   if (data.nodes.empty() || data.edges.empty()) throw InputError(source + ": the skeleton has no bones");
+  // The readers guarantee these; skeletons made in memory may not.
+  for (size_t i = 0; i < data.nodes.size(); ++i)
+    if (!data.nodes[i].allFinite()) throw InputError(source + ": node " + std::to_string(i + 1) + " has a NaN or infinite coordinate");
+  for (size_t i = 0; i < data.edges.size(); ++i)
+    for (int end : data.edges[i])
+      if (end < 0 || size_t(end) >= data.nodes.size())
+        throw InputError(source + ": bone " + std::to_string(i + 1) + " names node " + std::to_string(end + 1) + " of " +
+                         std::to_string(data.nodes.size()));
   Eigen::Vector3d lo = data.nodes[0], hi = data.nodes[0];
   for (const auto& p : data.nodes) {
     lo = lo.cwiseMin(p);
