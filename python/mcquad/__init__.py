@@ -1,0 +1,306 @@
+"""mcquad: quad meshes from point clouds and their skeletons by a Monte Carlo method.
+
+The functions wrap the C++ library the ``mcquad`` command is built on (not
+the command line): numpy arrays in, numpy arrays and the same JSON report out,
+the GIL released while the work runs, so fits in threads run side by side.
+
+>>> import mcquad
+>>> shape = mcquad.generate("t-shape")
+>>> result = mcquad.fit(shape.points, (shape.nodes, shape.edges), seed=1)
+>>> result.vertices.shape[1], result.faces.shape[1]
+(3, 4)
+>>> result.verdict.passed
+True
+
+Errors are raised as :class:`InputError` (bad files, arrays or options; also
+a ``ValueError``), :class:`UnsupportedError`, :class:`DeviceError` and
+:class:`OutputError` (also an ``OSError``), all derived from :class:`Error`,
+with the messages the command prints.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from typing import Any, Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _core
+from ._core import DeviceError, Error, InputError, OutputError, UnsupportedError
+
+__version__: str = _core.__version__
+
+__all__ = [
+    "Error", "InputError", "UnsupportedError", "DeviceError", "OutputError",
+    "Skeleton", "Shape", "Verdict", "FitResult",
+    "read_points", "read_skeleton", "read_mesh", "write_mesh",
+    "fit", "metrics", "surfaces", "generate", "shape_names",
+]
+
+PathLike = Union[str, "os.PathLike[str]"]
+ArrayLike = Any  #: anything numpy.asarray turns into the shape asked for
+#: progress(label, done, total): a stage's name (e.g. "cells", "evolving") and how far it is.
+ProgressCallback = Callable[[str, int, int], None]
+
+
+class Skeleton(NamedTuple):
+    """A skeleton graph: ``nodes`` (M, 3) float64 and ``edges`` (E, 2) int64 of 0-based node indices."""
+
+    nodes: np.ndarray
+    edges: np.ndarray
+
+
+class Shape(NamedTuple):
+    """A generated test shape (see :func:`generate`)."""
+
+    name: str
+    points: np.ndarray
+    nodes: np.ndarray
+    edges: np.ndarray
+    open_ends: int
+    independent_cycles: int
+
+    @property
+    def skeleton(self) -> Skeleton:
+        return Skeleton(self.nodes, self.edges)
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """Pass or fail per check of a fitted mesh, each with its figure and threshold."""
+
+    passed: bool
+    checks: List[Dict[str, Any]]
+
+    @property
+    def failures(self) -> List[Dict[str, Any]]:
+        return [check for check in self.checks if not check["passed"]]
+
+    def __bool__(self) -> bool:
+        return self.passed
+
+
+@dataclass
+class FitResult:
+    """The fitted quad mesh and its report (the JSON report of ``mcquad fit --report``)."""
+
+    vertices: np.ndarray  #: (V, 3) float64
+    faces: np.ndarray  #: (F, 4) int64, 0-based vertex indices
+    report: Dict[str, Any] = field(repr=False)
+
+    @property
+    def verdict(self) -> Verdict:
+        v = self.report["verdict"]
+        return Verdict(bool(v["passed"]), list(v["checks"]))
+
+    def write(self, path: PathLike) -> None:
+        """Writes the mesh by extension (.obj, .off, .ply, .om), atomically, as ``mcquad fit -o`` does."""
+        write_mesh(path, self.vertices, self.faces)
+
+
+def _path(path: PathLike) -> str:
+    return os.fspath(path)
+
+
+def read_points(path: PathLike) -> np.ndarray:
+    """Reads a point cloud (.ply, .xyz, .txt, .csv, .obj, .off) as an (N, 3) float32 array."""
+    return _core.read_points(_path(path))[0]
+
+
+def read_skeleton(path: PathLike) -> Skeleton:
+    """Reads a skeleton (.obj with v/l lines, or CGAL polylines .cgal/.polylines/.txt)."""
+    nodes, edges = _core.read_skeleton(_path(path))
+    return Skeleton(nodes, edges)
+
+
+def read_mesh(path: PathLike) -> Tuple[np.ndarray, np.ndarray]:
+    """Reads a polygon mesh: vertices (V, 3) float64 and faces (F, k) int64, -1 padding smaller faces."""
+    return _core.read_mesh(_path(path))
+
+
+def write_mesh(path: PathLike, vertices: ArrayLike, faces: ArrayLike) -> None:
+    """Writes a mesh by extension (.obj, .off, .ply, .om), atomically."""
+    _core.write_mesh(_path(path), np.asarray(vertices), np.asarray(faces))
+
+
+SkeletonLike = Union[PathLike, Skeleton, Tuple[ArrayLike, ArrayLike], Dict[str, ArrayLike]]
+
+
+def _points(points: Union[PathLike, ArrayLike]) -> Tuple[np.ndarray, str]:
+    if isinstance(points, (str, os.PathLike)):
+        return read_points(points), _path(points)
+    return np.asarray(points), "points array"
+
+
+def _skeleton(skeleton: Optional[SkeletonLike]) -> Tuple[np.ndarray, np.ndarray, str]:
+    if skeleton is None:
+        raise UnsupportedError(
+            "no skeleton given: automatic skeleton extraction is not available in this version; "
+            "pass a skeleton file or (nodes, edges) arrays")
+    if isinstance(skeleton, (str, os.PathLike)):
+        s = read_skeleton(skeleton)
+        return s.nodes, s.edges, _path(skeleton)
+    if isinstance(skeleton, dict):
+        return np.asarray(skeleton["nodes"]), np.asarray(skeleton["edges"]), "skeleton arrays"
+    nodes, edges = skeleton
+    return np.asarray(nodes), np.asarray(edges), "skeleton arrays"
+
+
+def fit(
+    points: Union[PathLike, ArrayLike],
+    skeleton: Optional[SkeletonLike] = None,
+    *,
+    ends: str = "auto",
+    start_fraction: float = 0.7,
+    resolution: float = 0.0,
+    target_vertices: int = 0,
+    min_junction_angle: float = 75.0,
+    write_skeleton: str = "",
+    backend: str = "auto",
+    device: str = "",
+    mode: str = "robust",
+    relaxation: float = 0.0,
+    projection: str = "mean",
+    fill_holes: bool = True,
+    crossing_guard: bool = True,
+    held_back_relaxation: float = 0.6,
+    own_cells: bool = True,
+    local_epsilon: bool = True,
+    hit_band: float = 0.4,
+    iterations: int = 20,
+    tolerance: float = 0.0,
+    seed: int = 1,
+    cones: int = 4,
+    generators: int = 6,
+    alpha_max: float = 10.0,
+    samples: int = 10,
+    epsilon: float = 0.0,
+    leaf_size: int = 0,
+    snapshots: str = "",
+    surfaces: str = "",
+    control_nets: str = "",
+    progress: Optional[ProgressCallback] = None,
+) -> FitResult:
+    """The whole pipeline, as ``mcquad fit``: initial mesh, Monte Carlo evolution, metrics, verdict.
+
+    Args:
+        points: (N, 3) array (float64 is converted to float32, as the readers
+            store points) or the path of a point cloud file.
+        skeleton: a skeleton file's path, a :class:`Skeleton`, a tuple
+            ``(nodes, edges)`` or a dict with those keys (0-based edges).
+        ends: ``auto`` (decided from the cloud), ``open`` or ``capped``.
+        start_fraction: initial mesh radius as a fraction of the local cloud radius (0.05 to 0.95).
+        resolution: target edge length of the refined mesh (0: 16 vertices around a tube).
+        target_vertices: refine until at least this many vertices (0: off).
+        min_junction_angle: degrees (0 to 120); junctions whose bones fork more
+            acutely move to where the cloud's tubes part (0: never).
+        write_skeleton: write the skeleton the mesh is built on here (OBJ).
+        backend: ``auto`` (OpenCL if a device exists), ``serial`` or ``opencl``.
+        device: OpenCL device index or name (default: ``$MCQUAD_DEVICE``, else the first GPU, else the first device).
+        mode: ``robust`` (the improvements over the paper) or ``paper`` (the paper's step exactly).
+        relaxation: robust mode: tangential relaxation weight before each step (0 to 1; 0: off).
+        projection: robust mode: a cell's distance along a ray from its samples, ``mean`` or ``min`` (the paper's).
+        fill_holes: robust mode: vertices that find no cell take their neighbours' offset.
+        crossing_guard: robust mode: shorten moves that make faces cross or fold after each step.
+        held_back_relaxation: robust mode: relaxation weight for the vertices the guard held back (0 to 1).
+        own_cells: robust mode: a vertex sees only the cells of the bones near its own.
+        local_epsilon: robust mode: epsilon and the ray reach scale with the local radius.
+        hit_band: robust mode: a ray averages every cell within this fraction of epsilon of its first hit (0 to 1).
+        iterations: maximal number of iterations.
+        tolerance: stop when the error level improves by less than this fraction (0: never).
+        seed: random seed; the same seed gives the same mesh, bit for bit, as ``mcquad fit --seed``.
+        cones: c, number of cones (1 to 64).
+        generators: r, rays per cone (1 to 64).
+        alpha_max: maximal cone half angle, degrees (0 to 89).
+        samples: m, random samples per hit cell (1 to 1024).
+        epsilon: feasibility bound and ray reach (0: 0.6 x the median local radius).
+        leaf_size: maximal points per cell (0: 6, growing in proportion above 2 million points).
+        snapshots: write the mesh after every iteration into this directory.
+        surfaces: also write the final mesh as B-spline surfaces (.step, .stp, .iges, .igs).
+        control_nets: also write the surfaces' control nets (.obj, .off, .ply, .om).
+        progress: called as ``progress(label, done, total)`` at every stage's start
+            (0 of 1) and end (1 of 1), and as long stages advance.
+
+    Returns:
+        :class:`FitResult` with ``vertices``, ``faces``, ``report``, ``verdict`` and ``write(path)``.
+
+    Raises:
+        InputError, UnsupportedError, DeviceError, OutputError.
+    """
+    options = {name: value for name, value in locals().items() if name in _FIT_OPTIONS}
+    return _fit(points, skeleton, options, progress)
+
+
+_FIT_OPTIONS = frozenset(_core.fit_defaults())
+
+
+def _fit(points, skeleton, options: Dict[str, Any], progress: Optional[ProgressCallback]) -> FitResult:
+    cloud, points_name = _points(points)
+    nodes, edges, skeleton_name = _skeleton(skeleton)
+    vertices, faces, report = _core.fit(cloud, nodes, edges, options, points_name, skeleton_name, progress)
+    return FitResult(vertices, faces, report)
+
+
+def metrics(
+    vertices: ArrayLike,
+    faces: ArrayLike,
+    points: Union[PathLike, ArrayLike],
+    skeleton: Optional[SkeletonLike] = None,
+    *,
+    leaf_size: int = 0,
+) -> Dict[str, Any]:
+    """Distances both ways, error level, topology and defects of a mesh, as ``mcquad metrics``.
+
+    With a skeleton, also the faces turned into the tube. Returns the same dict as ``mcquad metrics --json``.
+    """
+    cloud, _ = _points(points)
+    nodes = edges = None
+    if skeleton is not None:
+        nodes, edges, _ = _skeleton(skeleton)
+    return _core.metrics(np.asarray(vertices), np.asarray(faces), cloud, nodes, edges, leaf_size)
+
+
+def surfaces(
+    vertices: ArrayLike,
+    faces: ArrayLike,
+    output: PathLike,
+    *,
+    points: Optional[Union[PathLike, ArrayLike]] = None,
+    control_nets: str = "",
+    tangent_tolerance: float = 1.0,
+) -> Dict[str, Any]:
+    """B-spline surfaces of a quad mesh written as STEP or IGES (``output``), as ``mcquad surfaces``.
+
+    With ``points``, the surfaces' distance to the cloud is measured too. Returns the surface report.
+    """
+    cloud = None if points is None else _points(points)[0]
+    return _core.surfaces(np.asarray(vertices), np.asarray(faces), _path(output), cloud, control_nets,
+                          float(tangent_tolerance))
+
+
+def generate(
+    name: str,
+    directory: Optional[PathLike] = None,
+    *,
+    points: int = 0,
+    noise: float = 0.0,
+    seed: int = 1,
+    angle: float = 0.0,
+    arms: int = 4,
+    outliers: float = 0.0,
+    density_ratio: float = 1.0,
+    holes: int = 0,
+) -> Shape:
+    """A synthetic cloud with its skeleton, as ``mcquad generate`` (names: :func:`shape_names`).
+
+    With ``directory``, also writes NAME.ply, NAME.skeleton.obj and NAME.surface.json there.
+    """
+    options = {k: v for k, v in locals().items() if k not in ("name", "directory")}
+    d = _core.generate(name, None if directory is None else _path(directory), options)
+    return Shape(d["name"], d["points"], d["nodes"], d["edges"], d["open_ends"], d["independent_cycles"])
+
+
+def shape_names() -> List[Tuple[str, str]]:
+    """The generator's shapes, each with a line describing it."""
+    return list(_core.shape_names())

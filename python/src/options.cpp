@@ -1,0 +1,151 @@
+#include "options.h"
+
+#include <cmath>
+#include <functional>
+#include <map>
+#include <string>
+
+#include "core/errors.h"
+
+namespace py = pybind11;
+
+namespace mcquad {
+namespace {
+
+constexpr double kDegree = M_PI / 180.0;
+
+//! How one keyword reads and writes its field of `Options`.
+template <typename Options>
+struct Field {
+  std::function<py::object(const Options&)> get;
+  std::function<void(Options&, const py::handle&)> set;
+};
+
+template <typename Options>
+using FieldTable = std::map<std::string, Field<Options>>;
+
+//! A plain field: the Python value is the struct's value.
+template <typename Options, typename T>
+Field<Options> plain(T Options::*member) {
+  return {[member](const Options& o) { return py::cast(o.*member); },
+          [member](Options& o, const py::handle& v) { o.*member = v.cast<T>(); }};
+}
+
+//! A field reached through a nested struct (options.evolution.cones).
+template <typename Options, typename Inner, typename T>
+Field<Options> nested(Inner Options::*inner, T Inner::*member) {
+  return {[inner, member](const Options& o) { return py::cast(o.*inner.*member); },
+          [inner, member](Options& o, const py::handle& v) { o.*inner.*member = v.cast<T>(); }};
+}
+
+//! An angle kept in radians, given in degrees.
+template <typename Options, typename Inner>
+Field<Options> degrees(Inner Options::*inner, double Inner::*member) {
+  // Rounded so that 75 degrees reads back as 75, not 75.00000000000001.
+  return {[inner, member](const Options& o) { return py::cast(std::round(o.*inner.*member / kDegree * 1e9) / 1e9); },
+          [inner, member](Options& o, const py::handle& v) { o.*inner.*member = v.cast<double>() * kDegree; }};
+}
+
+template <typename Options, typename Enum>
+Field<Options> word(std::function<Enum&(Options&)> field, std::function<std::string(const Options&)> name,
+                    Enum (*from_name)(const std::string&, const std::string&), const char* option) {
+  return {[name](const Options& o) { return py::cast(name(o)); },
+          [field, from_name, option](Options& o, const py::handle& v) { field(o) = from_name(v.cast<std::string>(), option); }};
+}
+
+const FieldTable<FitOptions>& fit_fields() {
+  using O = FitOptions;
+  using E = EvolutionParameters;
+  using I = InitialMeshOptions;
+  static const FieldTable<O> table = {
+      {"ends", word<O, EndMode>([](O& o) -> EndMode& { return o.initial.ends; },
+                                [](const O& o) { return o.initial.ends == EndMode::kOpen ? "open"
+                                                        : o.initial.ends == EndMode::kCapped ? "capped" : "auto"; },
+                                end_mode_from_name, "ends")},
+      {"start_fraction", nested(&O::initial, &I::start_fraction)},
+      {"resolution", nested(&O::initial, &I::resolution)},
+      {"target_vertices", nested(&O::initial, &I::target_vertices)},
+      {"min_junction_angle", degrees(&O::initial, &I::min_junction_angle)},
+      {"write_skeleton", plain(&O::construction_skeleton)},
+      {"backend", word<O, BackendKind>([](O& o) -> BackendKind& { return o.backend; },
+                                       [](const O& o) { return o.backend == BackendKind::kSerial ? "serial"
+                                                               : o.backend == BackendKind::kOpenCL ? "opencl" : "auto"; },
+                                       backend_from_name, "backend")},
+      {"device", plain(&O::device)},
+      {"mode", word<O, E::Mode>([](O& o) -> E::Mode& { return o.evolution.mode; },
+                                [](const O& o) { return o.evolution.mode == E::Mode::kPaper ? "paper" : "robust"; },
+                                evolution_mode_from_name, "mode")},
+      {"relaxation", nested(&O::evolution, &E::relaxation)},
+      {"projection", {[](const O& o) { return py::cast(o.evolution.mean_projection ? "mean" : "min"); },
+                      [](O& o, const py::handle& v) {
+                        auto name = v.cast<std::string>();
+                        if (name != "mean" && name != "min") throw InputError("projection: '" + name + "' is not one of mean, min");
+                        o.evolution.mean_projection = name == "mean";
+                      }}},
+      {"fill_holes", nested(&O::evolution, &E::fill_holes)},
+      {"crossing_guard", nested(&O::evolution, &E::crossing_guard)},
+      {"held_back_relaxation", nested(&O::evolution, &E::held_back_relaxation)},
+      {"own_cells", nested(&O::evolution, &E::own_cells)},
+      {"local_epsilon", nested(&O::evolution, &E::local_epsilon)},
+      {"hit_band", nested(&O::evolution, &E::hit_band)},
+      {"iterations", nested(&O::evolution, &E::iterations)},
+      {"tolerance", nested(&O::evolution, &E::tolerance)},
+      {"seed", nested(&O::evolution, &E::seed)},
+      {"cones", nested(&O::evolution, &E::cones)},
+      {"generators", nested(&O::evolution, &E::generators)},
+      {"alpha_max", degrees(&O::evolution, &E::alpha_max)},
+      {"samples", nested(&O::evolution, &E::samples)},
+      {"epsilon", nested(&O::evolution, &E::epsilon)},
+      {"leaf_size", plain(&O::leaf_size)},
+      {"snapshots", plain(&O::snapshots_directory)},
+      {"surfaces", {[](const O& o) { return py::cast(o.surfaces.cad_path); },
+                    [](O& o, const py::handle& v) { o.surfaces.cad_path = v.cast<std::string>(); }}},
+      {"control_nets", {[](const O& o) { return py::cast(o.surfaces.control_nets_path); },
+                        [](O& o, const py::handle& v) { o.surfaces.control_nets_path = v.cast<std::string>(); }}},
+  };
+  return table;
+}
+
+const FieldTable<ShapeOptions>& shape_fields() {
+  using S = ShapeOptions;
+  static const FieldTable<S> table = {
+      {"points", plain(&S::points)},         {"noise", plain(&S::noise)},
+      {"seed", plain(&S::seed)},             {"angle", plain(&S::angle_degrees)},
+      {"arms", plain(&S::arms)},             {"outliers", plain(&S::outliers)},
+      {"density_ratio", plain(&S::density_ratio)}, {"holes", plain(&S::holes)},
+  };
+  return table;
+}
+
+template <typename Options>
+Options options_from_dict(const py::dict& given, const FieldTable<Options>& table) {
+  Options options;
+  for (const auto& [key, value] : given) {
+    auto name = key.template cast<std::string>();
+    auto field = table.find(name);
+    if (field == table.end()) throw InputError("unknown option '" + name + "'");
+    try {
+      field->second.set(options, value);
+    } catch (const py::cast_error&) {
+      throw InputError(name + ": " + py::repr(value).template cast<std::string>() + " has the wrong type");
+    }
+  }
+  return options;
+}
+
+template <typename Options>
+py::dict defaults_of(const FieldTable<Options>& table) {
+  Options options;
+  py::dict out;
+  for (const auto& [name, field] : table) out[py::str(name)] = field.get(options);
+  return out;
+}
+
+}  // namespace
+
+FitOptions fit_options_from_dict(const py::dict& options) { return options_from_dict(options, fit_fields()); }
+py::dict fit_defaults() { return defaults_of(fit_fields()); }
+ShapeOptions shape_options_from_dict(const py::dict& options) { return options_from_dict(options, shape_fields()); }
+py::dict shape_defaults() { return defaults_of(shape_fields()); }
+
+}  // namespace mcquad
