@@ -26,8 +26,11 @@ using namespace mcquad;
 //! Fails early, before hours of work, when an output cannot be written.
 void check_output_path(const std::string& path, const std::vector<std::string>& extensions) {
   std::string ext = file_extension(path);
-  if (std::find(extensions.begin(), extensions.end(), ext) == extensions.end())
-    throw OutputError(path + ": unknown extension '." + ext + "'");
+  if (std::find(extensions.begin(), extensions.end(), ext) == extensions.end()) {
+    std::string accepted;
+    for (const auto& e : extensions) accepted += (accepted.empty() ? "." : ", .") + e;
+    throw OutputError(path + ": unknown extension '." + ext + "' (expected " + accepted + ")");
+  }
   std::filesystem::path dir = std::filesystem::path(path).parent_path();
   std::error_code ec;
   if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
@@ -36,7 +39,7 @@ void check_output_path(const std::string& path, const std::vector<std::string>& 
 
 void print_surface_summary(const nlohmann::json& report, const std::string& cad_path, bool with_cloud);
 
-const std::vector<std::string> kMeshExtensions = {"obj", "off", "ply", "om"};
+const std::vector<std::string> kMeshExtensions = {"obj", "off", "ply", "om", "stl", "stla"};
 const std::vector<std::string> kCadExtensions = {"step", "stp", "iges", "igs"};
 
 struct FitCommand {
@@ -50,7 +53,7 @@ struct FitCommand {
   void add_options(CLI::App* app, bool evolution) {
     app->add_option("POINTS", points, "point cloud (.ply, .xyz, .txt, .csv, .obj, .off)")->required();
     app->add_option("SKELETON", skeleton, "skeleton (.obj with v/l lines, or CGAL polylines .cgal/.polylines/.txt)")->required();
-    app->add_option("-o,--output", output, "output mesh (.obj, .off, .ply, .om)")->required();
+    app->add_option("-o,--output", output, "output mesh (.obj, .off, .ply, .om; .stl binary or .stla ASCII, triangulated)")->required();
     app->add_option("--report", report, "write a JSON report here");
     auto& init = options.initial;
     app->add_option("--ends", ends, "ends: auto (decided from the cloud), open or capped")

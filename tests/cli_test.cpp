@@ -123,11 +123,18 @@ TEST(Cli, BadInputsGiveOneLineAndDocumentedCodes) {
   EXPECT_NE(r.output.find(bad), std::string::npos) << r.output;
   EXPECT_EQ(mcquad("fit " + points + " " + dir.file("none.obj") + " -o " + dir.file("o.obj")).code, kExitInput);
   EXPECT_EQ(mcquad("fit " + points + " " + skeleton + " -o " + dir.file("nodir/o.obj")).code, kExitOutput);
-  EXPECT_EQ(mcquad("fit " + points + " " + skeleton + " -o " + dir.file("o.stl")).code, kExitOutput);
+  CliRun format = mcquad("fit " + points + " " + skeleton + " -o " + dir.file("o.xyz"));
+  EXPECT_EQ(format.code, kExitOutput);
+  EXPECT_NE(format.output.find("(expected .obj, .off, .ply, .om, .stl, .stla)"), std::string::npos) << format.output;
   EXPECT_EQ(mcquad("generate nothing -o " + dir.file("")).code, kExitInput);
   EXPECT_FALSE(std::filesystem::exists(dir.file("o.obj")));
   CliRun device = mcquad("fit " + points + " " + skeleton + " -o " + dir.file("o.obj") + " --backend opencl --device 99");
   EXPECT_EQ(device.code, kExitDevice) << device.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("o.obj")));
+  // An explicit device is not replaced by the serial backend, even with --backend auto.
+  CliRun automatic = mcquad("fit " + points + " " + skeleton + " -o " + dir.file("o.obj") + " --device 99");
+  EXPECT_EQ(automatic.code, kExitDevice) << automatic.output;
+  EXPECT_NE(automatic.output.find("OpenCL device 99 does not exist"), std::string::npos) << automatic.output;
   EXPECT_FALSE(std::filesystem::exists(dir.file("o.obj")));
 }
 

@@ -5,6 +5,7 @@
 
 #include "core/errors.h"
 #include "helpers.h"
+#include "io/file_utils.h"
 #include "io/mesh_io.h"
 #include "io/point_cloud_io.h"
 #include "io/skeleton_io.h"
@@ -156,9 +157,36 @@ TEST(MeshIo, WritesAtomicallyAndReportsUnwritableOutputs) {
     EXPECT_EQ(read_mesh(path).n_faces(), 1u) << ext;
   }
   EXPECT_THROW(write_mesh(dir.file("none/m.obj"), mesh), OutputError);
-  EXPECT_THROW(write_mesh(dir.file("m.stl"), mesh), OutputError);
+  try {
+    write_mesh(dir.file("m.xyz"), mesh);
+    ADD_FAILURE() << "no error for .xyz";
+  } catch (const OutputError& e) {
+    EXPECT_NE(std::string(e.what()).find("expected .obj, .off, .ply, .om, .stl"), std::string::npos) << e.what();
+  }
   for (const auto& entry : std::filesystem::directory_iterator(dir.file("")))
     EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << "temporary left behind";
+}
+
+TEST(MeshIo, WritesStlTrianglesSplitAlongTheShorterDiagonal) {
+  TempDir dir;
+  QuadMesh mesh;
+  // A kite: the diagonal 1-3 (length 1) is shorter than 0-2 (length 3).
+  auto a = mesh.add_vertex({0, 0, 0}), b = mesh.add_vertex({1.5, -0.5, 0}), c = mesh.add_vertex({3, 0, 0}),
+       d = mesh.add_vertex({1.5, 0.5, 0});
+  mesh.add_face(std::vector<QuadMesh::VertexHandle>{a, b, c, d});
+  write_mesh(dir.file("m.stl"), mesh);
+  write_mesh(dir.file("m.stla"), mesh);
+  // Binary STL: an 80-byte header, a count, and 50 bytes a triangle.
+  EXPECT_EQ(std::filesystem::file_size(dir.file("m.stl")), 84u + 2 * 50u);
+  std::string ascii = read_file(dir.file("m.stla"));
+  EXPECT_EQ(ascii.rfind("solid", 0), 0u) << ascii;
+  size_t facets = 0;
+  for (size_t at = 0; (at = ascii.find("facet normal", at)) != std::string::npos; ++at) ++facets;
+  EXPECT_EQ(facets, 2u);
+  // Both triangles use the short diagonal's ends, (1.5, -0.5) and (1.5, 0.5).
+  size_t short_ends = 0;
+  for (size_t at = 0; (at = ascii.find("vertex 1.5", at)) != std::string::npos; ++at) ++short_ends;
+  EXPECT_EQ(short_ends, 4u) << ascii;
 }
 
 }  // namespace

@@ -14,13 +14,13 @@ std::unique_ptr<EvolutionBackend> make_backend(BackendKind kind, const std::stri
   try {
     return std::make_unique<OpenCLBackend>(select_device(device));
   } catch (const DeviceError& e) {
-    if (kind == BackendKind::kOpenCL) throw;
+    // A device asked for by name or index is never silently replaced.
+    if (kind == BackendKind::kOpenCL || !device.empty()) throw;
     warn(std::string("no usable OpenCL device, using the serial backend: ") + e.what());
     return std::make_unique<SerialBackend>();
   }
 #else
-  (void)device;
-  if (kind == BackendKind::kOpenCL) throw DeviceError("this build of mcquad has no OpenCL backend (MCQUAD_WITH_OPENCL=OFF)");
+  if (kind == BackendKind::kOpenCL || !device.empty()) throw DeviceError("this build of mcquad has no OpenCL backend (MCQUAD_WITH_OPENCL=OFF)");
   return std::make_unique<SerialBackend>();
 #endif
 }

@@ -20,18 +20,42 @@ bool supported_mesh_extension(const std::string& ext) {
   return ext == "obj" || ext == "off" || ext == "ply" || ext == "om";
 }
 
+bool stl_extension(const std::string& ext) { return ext == "stl" || ext == "stla"; }
+
+//! The mesh with every quad split in two triangles along its shorter
+//! diagonal (the split that keeps the triangles fuller), other polygons as fans.
+QuadMesh triangulated(const QuadMesh& mesh) {
+  QuadMesh out;
+  for (auto v : mesh.vertices()) out.add_vertex(mesh.point(v));
+  std::vector<QuadMesh::VertexHandle> c;
+  for (auto f : mesh.faces()) {
+    c.assign(mesh.fv_range(f).begin(), mesh.fv_range(f).end());
+    auto corner = [&](size_t i) { return out.vertex_handle(unsigned(c[i].idx())); };
+    if (c.size() == 4 && (mesh.point(c[1]) - mesh.point(c[3])).sqrnorm() < (mesh.point(c[0]) - mesh.point(c[2])).sqrnorm()) {
+      out.add_face(corner(0), corner(1), corner(3));
+      out.add_face(corner(1), corner(2), corner(3));
+      continue;
+    }
+    for (size_t i = 1; i + 1 < c.size(); ++i) out.add_face(corner(0), corner(i), corner(i + 1));
+  }
+  return out;
+}
+
 }  // namespace
+
+const char* const kMeshOutputExtensions = ".obj, .off, .ply, .om, .stl (binary triangles) or .stla (ASCII triangles)";
 
 void write_mesh(const std::string& path, const QuadMesh& mesh) {
   std::string ext = file_extension(path);
-  if (!supported_mesh_extension(ext))
-    throw OutputError(path + ": unknown mesh extension '." + ext + "' (expected .obj, .off, .ply or .om)");
+  if (!supported_mesh_extension(ext) && !stl_extension(ext))
+    throw OutputError(path + ": unknown mesh extension '." + ext + "' (expected " + kMeshOutputExtensions + ")");
   silence_openmesh();
   write_atomically(path, [&](const std::string& temporary) {
     OpenMesh::IO::Options options;
-    if (ext == "ply" || ext == "om") options += OpenMesh::IO::Options::Binary;
-    if (!OpenMesh::IO::write_mesh(mesh, temporary, options, 10))
-      throw OutputError(path + ": cannot write mesh");
+    if (ext == "ply" || ext == "om" || ext == "stl") options += OpenMesh::IO::Options::Binary;
+    bool written = stl_extension(ext) ? OpenMesh::IO::write_mesh(triangulated(mesh), temporary, options, 10)
+                                      : OpenMesh::IO::write_mesh(mesh, temporary, options, 10);
+    if (!written) throw OutputError(path + ": cannot write mesh");
   });
 }
 

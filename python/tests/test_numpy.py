@@ -133,8 +133,10 @@ def test_unwritable_output_raises_output_error(tmp_path):
     with pytest.raises(mcquad.OutputError) as raised:
         mcquad.write_mesh(tmp_path / "no-such-directory" / "m.obj", vertices, faces)
     assert isinstance(raised.value, OSError)
-    with pytest.raises(mcquad.OutputError, match="m.stl"):
-        mcquad.write_mesh(tmp_path / "m.stl", vertices, faces)
+    with pytest.raises(mcquad.OutputError, match=r"m.xyz: unknown mesh extension '.xyz' \(expected .obj"):
+        mcquad.write_mesh(tmp_path / "m.xyz", vertices, faces)
+    mcquad.write_mesh(tmp_path / "m.stl", vertices, faces)  # triangulated
+    assert (tmp_path / "m.stl").stat().st_size == 84 + 2 * 50
 
 
 def test_no_skeleton_is_refused_clearly():
