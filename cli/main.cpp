@@ -15,6 +15,7 @@
 #include "pipeline/fit.h"
 #include "pipeline/measure.h"
 #include "pipeline/surfaces.h"
+#include "report/html_report.h"
 #ifdef MCQUAD_WITH_OPENCL
 #include "opencl/device_selection.h"
 #endif
@@ -43,7 +44,7 @@ const std::vector<std::string> kMeshExtensions = {"obj", "off", "ply", "om", "st
 const std::vector<std::string> kCadExtensions = {"step", "stp", "iges", "igs"};
 
 struct FitCommand {
-  std::string points, skeleton, output, report, backend = "auto", ends = "auto", stage = "refined", mode = "robust";
+  std::string points, skeleton, output, report, html, backend = "auto", ends = "auto", stage = "refined", mode = "robust";
   std::string projection = "mean", fill_holes = "on", crossing_guard = "on", own_cells = "on", local_epsilon = "on";
   FitOptions options;
   double alpha_degrees = 10.0;
@@ -55,6 +56,8 @@ struct FitCommand {
     app->add_option("SKELETON", skeleton, "skeleton (.obj with v/l lines, or CGAL polylines .cgal/.polylines/.txt)")->required();
     app->add_option("-o,--output", output, "output mesh (.obj, .off, .ply, .om; .stl binary or .stla ASCII, triangulated)")->required();
     app->add_option("--report", report, "write a JSON report here");
+    if (evolution)
+      app->add_option("--html", html, "write a self-contained HTML report here (the meshes, cloud and verdict to turn around)");
     auto& init = options.initial;
     app->add_option("--ends", ends, "ends: auto (decided from the cloud), open or capped")
         ->check(CLI::IsMember({"auto", "open", "capped"}))->capture_default_str();
@@ -118,6 +121,8 @@ struct FitCommand {
   int run(bool evolution) {
     check_output_path(output, kMeshExtensions);
     if (!report.empty()) check_output_path(report, {"json"});
+    if (!html.empty()) check_output_path(html, {"html"});
+    if (!html.empty()) check_three_js();
     if (!options.surfaces.cad_path.empty()) check_output_path(options.surfaces.cad_path, kCadExtensions);
     if (!options.surfaces.control_nets_path.empty()) check_output_path(options.surfaces.control_nets_path, kMeshExtensions);
     options.evolve = evolution;
@@ -133,15 +138,32 @@ struct FitCommand {
     options.initial.ends = end_mode_from_name(ends, "--ends");
     options.initial.stage = stage;
     options.measure = evolution;
+    options.keep_initial_mesh = !html.empty();
     FitResult result = run_fit(points, skeleton, options);
     write_mesh(output, result.mesh);
+    result.report["outputs"] = {{"mesh", std::filesystem::absolute(output).string()}};
     if (!report.empty()) write_text_atomically(report, result.report.dump(2) + "\n");
+    if (!html.empty()) write_fit_html(result);
     print_summary(result.report);
     if (!result.verdict) return kExitOk;
     for (const std::string& line : verdict_warnings(*result.verdict)) warn(line);
     std::printf("verdict: %s (%zu of %zu checks passed)\n", result.verdict->passed ? "pass" : "FAIL",
                 result.verdict->checks.size() - result.verdict->failures().size(), result.verdict->checks.size());
     return strict && !result.verdict->passed ? kExitVerdict : kExitOk;
+  }
+
+  //! The HTML report from what the fit left in memory (the cloud is read again).
+  void write_fit_html(const FitResult& result) const {
+    PointCloud cloud = read_point_cloud(points);
+    SkeletonData skeleton_data = read_skeleton(skeleton);
+    HtmlReportInput input;
+    input.report = &result.report;
+    input.final_mesh = &result.mesh;
+    input.initial_mesh = &result.initial_mesh;
+    input.cloud = &cloud;
+    input.skeleton = &skeleton_data;
+    input.title = std::filesystem::path(output).filename().string();
+    write_html_report(html, input);
   }
 
   void print_summary(const nlohmann::json& r) const {
@@ -163,6 +185,7 @@ struct FitCommand {
     if (r.contains("surfaces") && r["surfaces"].contains("cad_file"))
       print_surface_summary(r["surfaces"], options.surfaces.cad_path, true);
     if (!report.empty()) std::printf("report: %s\n", report.c_str());
+    if (!html.empty()) std::printf("HTML report: %s\n", html.c_str());
   }
 };
 
@@ -311,6 +334,12 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 90.0))->capture_default_str();
   surfaces_app->add_option("--json", surfaces_json, "write the surface report here");
 
+  std::string report_json, report_mesh, report_html;
+  auto* report_app = app.add_subcommand("report", "a fit's JSON report as a self-contained HTML page to look at");
+  report_app->add_option("REPORT", report_json, "the JSON report of 'mcquad fit --report'")->required();
+  report_app->add_option("-o,--output", report_html, "output (.html)")->required();
+  report_app->add_option("--mesh", report_mesh, "the fitted mesh (default: the one the report names in outputs.mesh)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -324,6 +353,12 @@ int main(int argc, char** argv) {
     if (*generate_app) return run_generate(shape_name, shape_dir, shape_options);
     if (app.got_subcommand("devices")) return run_devices();
     if (*surfaces_app) return run_surfaces(surfaces_mesh, surfaces_points, surface_outputs, surfaces_json);
+    if (*report_app) {
+      check_output_path(report_html, {"html"});
+      write_html_report_from_json(report_json, report_mesh, report_html);
+      std::printf("HTML report: %s\n", report_html.c_str());
+      return kExitOk;
+    }
     if (*metrics_app) return run_metrics(metrics_mesh, metrics_points, metrics_skeleton, metrics_surface, metrics_leaf, metrics_json);
   } catch (const InputError& e) {
     std::fprintf(stderr, "mcquad: error: %s\n", e.what());

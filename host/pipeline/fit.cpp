@@ -97,6 +97,7 @@ nlohmann::json parameters_json(const FitOptions& o, double epsilon, double media
           {"resolution", o.initial.resolution},
           {"target_vertices", o.initial.target_vertices},
           {"ends", o.initial.ends == EndMode::kAuto ? "auto" : o.initial.ends == EndMode::kOpen ? "open" : "capped"},
+          {"min_junction_angle_degrees", o.initial.min_junction_angle * 180.0 / M_PI},
           {"median_radius", median_radius}};
 }
 
@@ -151,6 +152,7 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
   // OpenMesh meshes have no move operations, so this is a copy; the original
   // goes at once (228 MiB for a mesh of 2.26 million vertices).
   result.mesh = initial.mesh;
+  if (options.keep_initial_mesh) result.initial_mesh = initial.mesh;
   initial.mesh.clear();
   // The initial mesh alone (mcquad init) needs no cells.
   CellTree cells;

@@ -24,6 +24,7 @@ struct FitOptions {
   std::string construction_skeleton; //!< write the skeleton the mesh was built on here (OBJ)
   bool evolve = true;                //!< false: stop after the initial mesh (mcquad init)
   bool measure = true;               //!< compute quality metrics for the report
+  bool keep_initial_mesh = false;    //!< return the initial mesh too (for the HTML report)
   SurfaceOutputs surfaces;           //!< B-spline surfaces to write (none by default)
 };
 
@@ -39,6 +40,7 @@ struct FitInput {
 
 struct FitResult {
   QuadMesh mesh;
+  QuadMesh initial_mesh;           //!< when FitOptions::keep_initial_mesh
   nlohmann::json report;
   std::optional<Verdict> verdict;  //!< when measured (mcquad fit; not mcquad init)
 };
