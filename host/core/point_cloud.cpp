@@ -28,7 +28,9 @@ void sort_spatially(PointCloud& cloud) {
   // (fine enough for locality; larger clouds are sorted by the code of their
   // first 2^25 bits of index only, still correct as a permutation).
   constexpr int kIndexBits = 25;
-  auto [lo, hi] = bounding_box(cloud);
+  // Not a structured binding: the lambda below captures `lo` (C++20 allows that, clang's C++17 does not).
+  const std::pair<Eigen::Vector3f, Eigen::Vector3f> box = bounding_box(cloud);
+  const Eigen::Vector3f lo = box.first, hi = box.second;
   Eigen::Vector3f scale = (hi - lo).cwiseMax(1e-30f).cwiseInverse() * float((1 << 13) - 1);
   auto morton_of = [&](size_t i) {
     Eigen::Vector3f c = (cloud.points[i] - lo).cwiseProduct(scale);

@@ -76,7 +76,8 @@ SkeletonData read_polylines(const std::string& path) {
     long long n;
     if (!parse_integer(fields[0], n) || n < 0) throw InputError(where + ": expected a point count, found '" + std::string(fields[0]) + "'");
     if (n < 2) throw InputError(where + ": a polyline needs at least two points");
-    if (fields.size() != size_t(1 + 3 * n))
+    // Compared by division: 3 * n overflows for counts a malformed line may claim.
+    if ((fields.size() - 1) % 3 != 0 || (long long)((fields.size() - 1) / 3) != n)
       throw InputError(where + ": polyline claims " + std::to_string(n) + " points but has " + std::to_string(fields.size() - 1) + " coordinates");
     int first = int(skeleton.nodes.size());
     for (long long k = 0; k < n; ++k) skeleton.nodes.push_back(parse_xyz(where, fields, size_t(1 + 3 * k)));
