@@ -116,6 +116,8 @@ struct FitCommand {
     app->add_option("--snapshots", options.snapshots_directory, "write the mesh after every iteration into this directory");
     app->add_option("--surfaces", options.surfaces.cad_path, "also write the final mesh as B-spline surfaces (.step, .stp, .iges, .igs)");
     app->add_option("--control-nets", options.surfaces.control_nets_path, "also write the surfaces' control nets (.obj, .off, .ply, .om)");
+    app->add_option("--units", options.surfaces.units, "the length unit the CAD file declares; the coordinates are written as they are")
+        ->check(CLI::IsMember({"mm", "cm", "m", "um", "in", "ft"}))->capture_default_str();
   }
 
   int run(bool evolution) {
@@ -244,8 +246,9 @@ int run_metrics(const std::string& mesh_path, const std::string& points_path, co
 //! Two to four lines on the surfaces: file, seams, distances.
 void print_surface_summary(const nlohmann::json& report, const std::string& cad_path, bool with_cloud) {
   const auto& checks = report["checks"];
-  std::printf("surfaces: %s (%zu B-spline faces read back, %zu periodic)\n", cad_path.c_str(),
-              report["cad_file"]["faces_read_back"].get<size_t>(), checks["periodic_surfaces"].get<size_t>());
+  std::printf("surfaces: %s (%zu B-spline faces read back, %zu periodic; units: %s)\n", cad_path.c_str(),
+              report["cad_file"]["faces_read_back"].get<size_t>(), checks["periodic_surfaces"].get<size_t>(),
+              report["cad_file"]["units"].get<std::string>().c_str());
   std::printf("seams: %zu edges, position gap %.3g, tangent-continuous within %.3g deg on %zu, max normal gap %.3g deg "
               "(%.3g deg on smooth parts of the mesh two or more edges from irregular vertices)\n",
               checks["seam_edges"].get<size_t>(), checks["max_position_gap"].get<double>(),
@@ -333,6 +336,8 @@ int main(int argc, char** argv) {
                            "normal gap, degrees, under which a seam counts as tangent-continuous")
       ->check(CLI::Range(0.0, 90.0))->capture_default_str();
   surfaces_app->add_option("--json", surfaces_json, "write the surface report here");
+  surfaces_app->add_option("--units", surface_outputs.units, "the length unit the CAD file declares; the coordinates are written as they are")
+      ->check(CLI::IsMember({"mm", "cm", "m", "um", "in", "ft"}))->capture_default_str();
 
   std::string report_json, report_mesh, report_html;
   auto* report_app = app.add_subcommand("report", "a fit's JSON report as a self-contained HTML page to look at");

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "io/file_utils.h"
+
 #include <cmath>
 #include <filesystem>
 
@@ -208,6 +210,36 @@ TEST(CadFiles, StepAndIgesReadBackWithEverySurface) {
   EXPECT_EQ(contents.bspline_faces, contents.faces);
   // Sewn along every seam: the only free edges are the open ends' rims.
   EXPECT_EQ(mesh_statistics(setup.initial.mesh).boundary_loops > 0, contents.free_edges > 0);
+}
+
+//! The first `count` CARTESIAN_POINT lines of a STEP file.
+std::vector<std::string> step_points(const std::string& text, size_t count) {
+  std::vector<std::string> points;
+  for (size_t at = 0; points.size() < count && (at = text.find("CARTESIAN_POINT", at)) != std::string::npos; ++at)
+    points.push_back(text.substr(at, text.find(';', at) - at));
+  return points;
+}
+
+TEST(CadFiles, UnitsAreDeclaredAndTheCoordinatesKept) {
+  test::TempDir dir;
+  SurfaceModel model = build_surface_model(torus_grid(12, 8, 0));
+  CadModel cad(model.surfaces, 1e-7);
+  cad.write(dir.file("mm.step"));
+  cad.write(dir.file("m.step"), "m");
+  cad.write(dir.file("in.step"), "in");
+  cad.write(dir.file("m.igs"), "m");
+  std::string mm = read_file(dir.file("mm.step")), m = read_file(dir.file("m.step")), in = read_file(dir.file("in.step"));
+  EXPECT_NE(mm.find("SI_UNIT(.MILLI.,.METRE.)"), std::string::npos);
+  EXPECT_NE(m.find("SI_UNIT($,.METRE.)"), std::string::npos);
+  EXPECT_EQ(m.find("SI_UNIT(.MILLI.,.METRE.)"), std::string::npos);
+  EXPECT_NE(in.find("'INCH'"), std::string::npos);
+  // A scan in metres stays the same numbers, declared as metres.
+  EXPECT_EQ(step_points(m, 20), step_points(mm, 20));
+  EXPECT_EQ(step_points(in, 20), step_points(mm, 20));
+  EXPECT_NE(read_file(dir.file("m.igs")).find(",1HM,"), std::string::npos);
+  EXPECT_EQ(read_cad_file(dir.file("m.step")).faces, model.surfaces.size());
+  EXPECT_THROW(cad.write(dir.file("km.step"), "km"), InputError);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("km.step")));
 }
 
 TEST(CadFiles, BadPathsAndFilesFailClearly) {

@@ -20,6 +20,7 @@
 #include "mesh/mesh_arrays.h"
 #include "pipeline/prepare.h"
 #include "pipeline/surfaces.h"
+#include "surfaces/cad_model.h"
 #include "metrics/mesh_metrics.h"
 #include "metrics/verdict.h"
 #include "skeleton/bone_assignment.h"
@@ -127,6 +128,7 @@ void check_fit_options(const FitOptions& options) {
   check_range("epsilon", e.epsilon, 0, HUGE_VAL);
   check_range("leaf_size", double(options.leaf_size), 0, double(size_t(1) << 20));
   if (options.evolve && i.stage != "refined") throw InputError("--stage applies to 'mcquad init' only");
+  check_cad_unit(options.surfaces.units);
 }
 
 //! The stages from the graph on, with the reading already timed.

@@ -29,6 +29,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 nlohmann::json export_surfaces(const QuadMesh& mesh, const PointCloud* cloud, const SurfaceOutputs& outputs) {
+  check_cad_unit(outputs.units);
   auto start = std::chrono::steady_clock::now();
   SurfaceModel model = build_surface_model(mesh);
   const PatchLayout& layout = model.layout;
@@ -44,9 +45,10 @@ nlohmann::json export_surfaces(const QuadMesh& mesh, const PointCloud* cloud, co
     // Seams meet to rounding error (both sides interpolate the same curve);
     // the sewing tolerance only has to absorb that.
     CadModel cad(model.surfaces, 1e-7 * diagonal(mesh));
-    cad.write(outputs.cad_path);
+    cad.write(outputs.cad_path, outputs.units);
     CadFileContents read_back = read_cad_file(outputs.cad_path);
     report["cad_file"] = {{"path", outputs.cad_path},
+                          {"units", outputs.units},
                           {"faces_written", cad.face_count()},
                           {"faces_read_back", read_back.faces},
                           {"bspline_faces_read_back", read_back.bspline_faces},

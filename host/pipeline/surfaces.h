@@ -12,6 +12,7 @@ struct SurfaceOutputs {
   std::string cad_path;                   //!< .step/.stp or .iges/.igs; empty: none
   std::string control_nets_path;          //!< the poles as a quad mesh (.obj, ...); empty: none
   double tangent_tolerance_degrees = 1.0; //!< seams within this normal gap count as tangent-continuous
+  std::string units = "mm";               //!< the length unit the CAD file declares (coordinates unchanged)
 };
 
 //! From the final quad mesh to CAD: regular regions, one interpolating

@@ -12,6 +12,7 @@
 #include <Interface_Static.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
+#include <STEPControl_Controller.hxx>
 #include <STEPControl_Reader.hxx>
 #include <STEPControl_Writer.hxx>
 #include <Standard_Failure.hxx>
@@ -38,6 +39,28 @@ constexpr int kPeriodicPoleShift = 1;
 
 //! OpenCASCADE reports through its messenger on standard output; the tool's
 //! stdout is the user's, so the printers go.
+struct CadUnit {
+  const char* name;  //!< as mcquad spells it
+  const char* step;  //!< OpenCASCADE's name for STEP
+  const char* iges;  //!< and for IGES
+};
+
+const CadUnit kUnits[] = {{"mm", "MM", "MM"}, {"cm", "CM", "CM"}, {"m", "M", "M"}, {"um", "UM", "UM"},
+                          {"in", "INCH", "IN"}, {"ft", "FT", "FT"}};
+
+const CadUnit& unit_named(const std::string& name) {
+  for (const auto& unit : kUnits)
+    if (name == unit.name) return unit;
+  throw InputError("units: '" + name + "' is not one of " + kCadUnits);
+}
+
+//! The model's coordinates are in `unit` already: OpenCASCADE's own unit is
+//! set to the same, so that it writes the numbers unchanged under that name.
+void set_cascade_unit(const CadUnit& unit, bool step) {
+  Interface_Static::SetCVal("xstep.cascade.unit", step ? unit.step : unit.iges);
+  if (step) Interface_Static::SetCVal("write.step.unit", unit.step);
+}
+
 void silence_opencascade() {
   static bool done = [] {
     Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_Printer));
@@ -150,18 +173,26 @@ CadModel::~CadModel() = default;
 size_t CadModel::face_count() const { return impl_->faces; }
 size_t CadModel::free_edges() const { return impl_->free_edges; }
 
-void CadModel::write(const std::string& path) const {
+const char* const kCadUnits = "mm, cm, m, um, in, ft";
+
+void check_cad_unit(const std::string& unit) { unit_named(unit); }
+
+void CadModel::write(const std::string& path, const std::string& unit_name) const {
   CadFormat format = format_of(path);
+  const CadUnit& unit = unit_named(unit_name);
   write_atomically(path, [&](const std::string& temporary) {
     try {
       if (format == CadFormat::kStep) {
+        STEPControl_Controller::Init();
+        set_cascade_unit(unit, true);
         STEPControl_Writer writer;
         if (writer.Transfer(impl_->shape, STEPControl_AsIs) != IFSelect_RetDone ||
             writer.Write(temporary.c_str()) != IFSelect_RetDone)
           throw OutputError(path + ": OpenCASCADE could not write the STEP file");
       } else {
         IGESControl_Controller::Init();
-        IGESControl_Writer writer("MM", 1);  // mode 1: faces as B-rep entities
+        set_cascade_unit(unit, false);
+        IGESControl_Writer writer(unit.iges, 1);  // mode 1: faces as B-rep entities
         if (!writer.AddShape(impl_->shape)) throw OutputError(path + ": OpenCASCADE could not convert the shape to IGES");
         writer.ComputeModel();
         if (!writer.Write(temporary.c_str())) throw OutputError(path + ": OpenCASCADE could not write the IGES file");

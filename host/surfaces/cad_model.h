@@ -29,6 +29,12 @@ class SurfaceEvaluator {
   friend class CadModel;
 };
 
+//! The length units a CAD file can be declared in, for messages: "mm, cm, m, um, in, ft".
+extern const char* const kCadUnits;
+
+//! InputError ("units: ...") unless `unit` is one of kCadUnits.
+void check_cad_unit(const std::string& unit);
+
 //! What OpenCASCADE found in a STEP or IGES file it read.
 struct CadFileContents {
   size_t faces = 0;
@@ -52,8 +58,10 @@ class CadModel {
   size_t free_edges() const;
 
   //! STEP (.step, .stp) or IGES (.iges, .igs) by extension, written
-  //! atomically. OutputError naming the file on failure or another extension.
-  void write(const std::string& path) const;
+  //! atomically, the coordinates as they are and declared to be in `unit`
+  //! (one of kCadUnits). OutputError naming the file on failure or another
+  //! extension, InputError for another unit.
+  void write(const std::string& path, const std::string& unit = "mm") const;
 
  private:
   struct Impl;

@@ -180,6 +180,7 @@ def fit(
     snapshots: str = "",
     surfaces: str = "",
     control_nets: str = "",
+    units: str = "mm",
     progress: Optional[ProgressCallback] = None,
 ) -> FitResult:
     """The whole pipeline, as ``mcquad fit``: initial mesh, Monte Carlo evolution, metrics, verdict.
@@ -219,6 +220,7 @@ def fit(
         snapshots: write the mesh after every iteration into this directory.
         surfaces: also write the final mesh as B-spline surfaces (.step, .stp, .iges, .igs).
         control_nets: also write the surfaces' control nets (.obj, .off, .ply, .om).
+        units: the length unit the CAD file declares (mm, cm, m, um, in, ft); coordinates are written as they are.
         progress: called as ``progress(label, done, total)`` at every stage's start
             (0 of 1) and end (1 of 1), and as long stages advance.
 
@@ -269,14 +271,16 @@ def surfaces(
     points: Optional[Union[PathLike, ArrayLike]] = None,
     control_nets: str = "",
     tangent_tolerance: float = 1.0,
+    units: str = "mm",
 ) -> Dict[str, Any]:
     """B-spline surfaces of a quad mesh written as STEP or IGES (``output``), as ``mcquad surfaces``.
 
-    With ``points``, the surfaces' distance to the cloud is measured too. Returns the surface report.
+    With ``points``, the surfaces' distance to the cloud is measured too. ``units`` is the length unit
+    the file declares (mm, cm, m, um, in, ft); the coordinates are written as they are. Returns the surface report.
     """
     cloud = None if points is None else _points(points)[0]
     return _core.surfaces(np.asarray(vertices), np.asarray(faces), _path(output), cloud, control_nets,
-                          float(tangent_tolerance))
+                          float(tangent_tolerance), units)
 
 
 def generate(

@@ -107,7 +107,7 @@ py::object metrics_json(DoubleArray vertices, IndexArray faces, FloatArray point
 }
 
 py::object surfaces_json(DoubleArray vertices, IndexArray faces, const std::string& cad_path, const py::object& points,
-                         const std::string& control_nets, double tangent_tolerance) {
+                         const std::string& control_nets, double tangent_tolerance, const std::string& units) {
   QuadMesh mesh = mesh_from_arrays(vertices, faces, "mesh");
   if (mesh.n_faces() == 0) throw InputError("mesh: the mesh has no faces");
   std::unique_ptr<PointCloud> cloud;
@@ -116,6 +116,7 @@ py::object surfaces_json(DoubleArray vertices, IndexArray faces, const std::stri
   outputs.cad_path = cad_path;
   outputs.control_nets_path = control_nets;
   outputs.tangent_tolerance_degrees = tangent_tolerance;
+  outputs.units = units;
   nlohmann::json report;
   {
     py::gil_scoped_release release;
@@ -201,5 +202,5 @@ PYBIND11_MODULE(_core, m) {
   m.def("metrics", &metrics_json, py::arg("vertices"), py::arg("faces"), py::arg("points"), py::arg("nodes"),
         py::arg("edges"), py::arg("leaf_size"));
   m.def("surfaces", &surfaces_json, py::arg("vertices"), py::arg("faces"), py::arg("cad_path"), py::arg("points"),
-        py::arg("control_nets"), py::arg("tangent_tolerance"));
+        py::arg("control_nets"), py::arg("tangent_tolerance"), py::arg("units"));
 }

@@ -102,6 +102,8 @@ const FieldTable<FitOptions>& fit_fields() {
                     [](O& o, const py::handle& v) { o.surfaces.cad_path = v.cast<std::string>(); }}},
       {"control_nets", {[](const O& o) { return py::cast(o.surfaces.control_nets_path); },
                         [](O& o, const py::handle& v) { o.surfaces.control_nets_path = v.cast<std::string>(); }}},
+      {"units", {[](const O& o) { return py::cast(o.surfaces.units); },
+                 [](O& o, const py::handle& v) { o.surfaces.units = v.cast<std::string>(); }}},
   };
   return table;
 }

@@ -197,8 +197,9 @@ def test_metrics_equal_the_cli_metrics(t_shape, tmp_path, cli):
 
 def test_surfaces_write_step_and_measure_against_the_cloud(t_shape, tmp_path):
     result = mcquad.fit(t_shape / "t-shape.ply", t_shape / "t-shape.skeleton.obj", iterations=5, backend="serial")
-    report = mcquad.surfaces(result.vertices, result.faces, tmp_path / "t.step", points=t_shape / "t-shape.ply")
+    report = mcquad.surfaces(result.vertices, result.faces, tmp_path / "t.step", points=t_shape / "t-shape.ply", units="m")
     assert (tmp_path / "t.step").read_text().startswith("ISO-10303-21")
+    assert report["cad_file"]["units"] == "m" and "SI_UNIT($,.METRE.)" in (tmp_path / "t.step").read_text()
     assert report["cad_file"]["faces_read_back"] > 0
     assert report["checks"]["distance_to_cloud"]["p95"] > 0
 
