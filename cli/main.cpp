@@ -246,9 +246,11 @@ int run_metrics(const std::string& mesh_path, const std::string& points_path, co
 //! Two to four lines on the surfaces: file, seams, distances.
 void print_surface_summary(const nlohmann::json& report, const std::string& cad_path, bool with_cloud) {
   const auto& checks = report["checks"];
-  std::printf("surfaces: %s (%zu B-spline faces read back, %zu periodic; units: %s)\n", cad_path.c_str(),
-              report["cad_file"]["faces_read_back"].get<size_t>(), checks["periodic_surfaces"].get<size_t>(),
-              report["cad_file"]["units"].get<std::string>().c_str());
+  const auto& file = report["cad_file"];
+  std::printf("surfaces: %s (%zu B-spline faces read back, %zu periodic; units: %s; %zu shell(s), %s, %zu free edges)\n",
+              cad_path.c_str(), file["faces_read_back"].get<size_t>(), checks["periodic_surfaces"].get<size_t>(),
+              file["units"].get<std::string>().c_str(), file["shells_read_back"].get<size_t>(),
+              file["valid_read_back"].get<bool>() ? "valid" : "NOT VALID", file["free_edges_read_back"].get<size_t>());
   std::printf("seams: %zu edges, position gap %.3g, tangent-continuous within %.3g deg on %zu, max normal gap %.3g deg "
               "(%.3g deg on smooth parts of the mesh two or more edges from irregular vertices)\n",
               checks["seam_edges"].get<size_t>(), checks["max_position_gap"].get<double>(),

@@ -193,12 +193,18 @@ TEST(CadFiles, StepAndIgesReadBackWithEverySurface) {
   QuadMesh mesh = torus_grid(24, 10, 3);
   SurfaceModel model = build_surface_model(mesh);
   CadModel cad(model.surfaces, 1e-7);
-  EXPECT_EQ(cad.face_count(), model.surfaces.size());
+  EXPECT_EQ(cad.face_count(), 2 * model.surfaces.size());
+  EXPECT_EQ(cad.free_edges(), 0u);
   for (const char* name : {"torus.step", "torus.igs"}) {
     cad.write(dir.file(name));
     CadFileContents contents = read_cad_file(dir.file(name));
-    EXPECT_EQ(contents.faces, model.surfaces.size()) << name;
+    // The torus closing with a shift of 3 is one surface, periodic around
+    // the tube; the seam along it is closed by cutting it in two faces.
+    EXPECT_EQ(contents.faces, 2 * model.surfaces.size()) << name;
     EXPECT_EQ(contents.bspline_faces, contents.faces) << name;
+    EXPECT_EQ(contents.free_edges, 0u) << name << ": a closed shell";
+    EXPECT_EQ(contents.shells, 1u) << name;
+    EXPECT_TRUE(contents.valid) << name;
   }
   GeneratedShape shape = test::small_shape("t-shape", 20000);
   EvolutionSetup setup = prepare_evolution(build_skeleton_graph(shape.skeleton, "t"), shape.cloud, {}, 6, "t");
@@ -210,6 +216,17 @@ TEST(CadFiles, StepAndIgesReadBackWithEverySurface) {
   EXPECT_EQ(contents.bspline_faces, contents.faces);
   // Sewn along every seam: the only free edges are the open ends' rims.
   EXPECT_EQ(mesh_statistics(setup.initial.mesh).boundary_loops > 0, contents.free_edges > 0);
+  EXPECT_TRUE(contents.valid);
+  EXPECT_EQ(contents.shells, 1u);
+  // The theta graph is closed: a closed, valid shell.
+  GeneratedShape theta = test::small_shape("theta", 20000);
+  EvolutionSetup theta_setup = prepare_evolution(build_skeleton_graph(theta.skeleton, "theta"), theta.cloud, {}, 6, "theta");
+  SurfaceModel theta_model = build_surface_model(theta_setup.initial.mesh);
+  CadModel(theta_model.surfaces, 1e-6 * theta_setup.median_radius).write(dir.file("theta.step"));
+  CadFileContents theta_contents = read_cad_file(dir.file("theta.step"));
+  EXPECT_EQ(theta_contents.free_edges, 0u);
+  EXPECT_EQ(theta_contents.shells, 1u);
+  EXPECT_TRUE(theta_contents.valid);
 }
 
 //! The first `count` CARTESIAN_POINT lines of a STEP file.

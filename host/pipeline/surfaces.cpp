@@ -53,6 +53,8 @@ nlohmann::json export_surfaces(const QuadMesh& mesh, const PointCloud* cloud, co
                           {"faces_read_back", read_back.faces},
                           {"bspline_faces_read_back", read_back.bspline_faces},
                           {"free_edges_read_back", read_back.free_edges},
+                          {"shells_read_back", read_back.shells},
+                          {"valid_read_back", read_back.valid},
                           {"seconds", seconds_since(start)}};
   }
   if (!outputs.control_nets_path.empty()) write_mesh(outputs.control_nets_path, control_net_mesh(model.surfaces));

@@ -3,6 +3,7 @@
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_Sewing.hxx>
+#include <BRepCheck_Analyzer.hxx>
 #include <BRep_Builder.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <IFSelect_ReturnStatus.hxx>
@@ -150,15 +151,60 @@ struct CadModel::Impl {
   size_t free_edges = 0;
 };
 
+namespace {
+
+TopoDS_Face make_face(const Handle(Geom_BSplineSurface)& surface, double u0, double u1, double v0, double v1,
+                      double tolerance) {
+  BRepBuilderAPI_MakeFace face(surface, u0, u1, v0, v1, tolerance);
+  if (!face.IsDone()) throw UnsupportedError("surfaces: OpenCASCADE could not make a face of a B-spline surface");
+  return face.Face();
+}
+
+size_t free_edges_of(const std::vector<TopoDS_Face>& faces, double tolerance) {
+  BRepBuilderAPI_Sewing sewing(tolerance);
+  for (const auto& face : faces) sewing.Add(face);
+  sewing.Perform();
+  return size_t(sewing.NbFreeEdges());
+}
+
+//! One face, or two where that closes a seam one face cannot: a surface
+//! closed in a direction without being periodic there (the knot's tube,
+//! whose ends meet turned by a cyclic shift) has two boundary edges on the
+//! same curve, which OpenCASCADE neither makes a seam nor sews within one
+//! face. Cut in two halves across that direction, the halves sew to each
+//! other along both cuts.
+std::vector<TopoDS_Face> faces_of(const Handle(Geom_BSplineSurface)& surface, double tolerance) {
+  double u0, u1, v0, v1;
+  surface->Bounds(u0, u1, v0, v1);
+  std::vector<TopoDS_Face> best = {make_face(surface, u0, u1, v0, v1, tolerance)};
+  size_t best_free = free_edges_of(best, tolerance);
+  if (best_free == 0) return best;
+  std::vector<std::vector<TopoDS_Face>> halves;
+  if (!surface->IsUPeriodic()) {
+    double um = 0.5 * (u0 + u1);
+    halves.push_back({make_face(surface, u0, um, v0, v1, tolerance), make_face(surface, um, u1, v0, v1, tolerance)});
+  }
+  if (!surface->IsVPeriodic()) {
+    double vm = 0.5 * (v0 + v1);
+    halves.push_back({make_face(surface, u0, u1, v0, vm, tolerance), make_face(surface, u0, u1, vm, v1, tolerance)});
+  }
+  for (auto& candidate : halves) {
+    // A cut adds two edges; it pays only where it closes more than it opens.
+    size_t free = free_edges_of(candidate, tolerance);
+    if (free < best_free) best = std::move(candidate), best_free = free;
+  }
+  return best;
+}
+
+}  // namespace
+
 CadModel::CadModel(const std::vector<BSplineSurface>& surfaces, double tolerance) : impl_(std::make_unique<Impl>()) {
   silence_opencascade();
   try {
     BRepBuilderAPI_Sewing sewing(tolerance);
     for (const BSplineSurface& surface : surfaces) {
       SurfaceEvaluator evaluator(surface);
-      BRepBuilderAPI_MakeFace face(evaluator.impl_->surface, tolerance);
-      if (!face.IsDone()) throw UnsupportedError("surfaces: OpenCASCADE could not make a face of a B-spline surface");
-      sewing.Add(face.Face());
+      for (const TopoDS_Face& face : faces_of(evaluator.impl_->surface, tolerance)) sewing.Add(face);
     }
     sewing.Perform();
     impl_->shape = sewing.SewedShape();
@@ -235,6 +281,9 @@ CadFileContents read_cad_file(const std::string& path) {
   sewing.Load(shape);
   sewing.Perform();
   contents.free_edges = size_t(sewing.NbFreeEdges());
+  TopoDS_Shape sewn = sewing.SewedShape();
+  for (TopExp_Explorer explorer(sewn, TopAbs_SHELL); explorer.More(); explorer.Next()) contents.shells += 1;
+  contents.valid = BRepCheck_Analyzer(sewn).IsValid();
   return contents;
 }
 

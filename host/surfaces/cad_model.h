@@ -40,6 +40,8 @@ struct CadFileContents {
   size_t faces = 0;
   size_t bspline_faces = 0;  //!< faces whose surface is a B-spline surface
   size_t free_edges = 0;     //!< edges of only one face after sewing (the open boundary)
+  size_t shells = 0;         //!< connected shells after sewing
+  bool valid = false;        //!< OpenCASCADE's BRepCheck_Analyzer finds the sewn shape valid
 };
 
 //! The surfaces as one OpenCASCADE shape: a face per surface, sewn along the
