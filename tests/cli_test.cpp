@@ -96,7 +96,7 @@ TEST(Cli, VerdictWarnsAndStrictFailsAfterWritingTheOutputs) {
   std::string inputs = dir.file("t-shape.ply") + " " + dir.file("t-shape.skeleton.obj") + " --backend serial";
   CliRun good = mcquad("fit " + inputs + " -o " + dir.file("good.obj") + " --strict");
   EXPECT_EQ(good.code, kExitOk) << good.output;
-  EXPECT_NE(good.output.find("verdict: pass (8 of 8 checks passed)"), std::string::npos) << good.output;
+  EXPECT_NE(good.output.find("verdict: pass (10 of 10 checks passed)"), std::string::npos) << good.output;
   EXPECT_EQ(good.output.find("check failed"), std::string::npos) << good.output;
   // No iterations: the initial mesh inside the tube, far from the cloud.
   std::string unfitted = "fit " + inputs + " --iterations 0 -o " + dir.file("far.obj") + " --report " + dir.file("far.json");

@@ -27,9 +27,11 @@ const VerdictCheck& check_named(const Verdict& verdict, const std::string& name)
 }
 
 TEST(Verdict, GoodFiguresPassEveryCheck) {
-  Verdict verdict = judge_mesh(good_metrics(), 1.0);
+  QualityMetrics m = good_metrics();
+  m.statistics.boundary_loops = 2;
+  Verdict verdict = judge_mesh(m, 1.0, 2);
   EXPECT_TRUE(verdict.passed);
-  EXPECT_EQ(verdict.checks.size(), 8u);
+  EXPECT_EQ(verdict.checks.size(), 10u);
   EXPECT_TRUE(verdict.failures().empty());
   EXPECT_TRUE(verdict_warnings(verdict).empty());
 }
@@ -44,7 +46,7 @@ class VerdictFailsOn : public ::testing::TestWithParam<BadFigure> {};
 TEST_P(VerdictFailsOn, OneBadFigure) {
   QualityMetrics m = good_metrics();
   GetParam().spoil(m);
-  Verdict verdict = judge_mesh(m, 1.0);
+  Verdict verdict = judge_mesh(m, 1.0, 0);
   EXPECT_FALSE(verdict.passed);
   ASSERT_EQ(verdict.failures().size(), 1u);
   EXPECT_EQ(verdict.failures()[0]->name, GetParam().check);
@@ -63,7 +65,9 @@ INSTANTIATE_TEST_SUITE_P(
                       BadFigure{"min_scaled_jacobian", [](QualityMetrics& m) { m.quad_shape.min_scaled_jacobian = -0.1; }},
                       BadFigure{"inward_faces", [](QualityMetrics& m) { m.inward_faces = 6; }},
                       BadFigure{"uncovered_cloud", [](QualityMetrics& m) { m.cloud_to_mesh.p95 = 0.06; }},
-                      BadFigure{"mesh_off_cloud", [](QualityMetrics& m) { m.mesh_to_cloud.mean = 0.03; }}),
+                      BadFigure{"mesh_off_cloud", [](QualityMetrics& m) { m.mesh_to_cloud.mean = 0.03; }},
+                      BadFigure{"open_ends", [](QualityMetrics& m) { m.statistics.boundary_loops = 1; }},
+                      BadFigure{"error_level", [](QualityMetrics& m) { m.error_level = 0.006; }}),
     [](const ::testing::TestParamInfo<BadFigure>& param) { return std::string(param.param.check); });
 
 TEST(Verdict, CrossingSitesAreNamedInTheWarning) {
@@ -95,6 +99,7 @@ TEST(Verdict, SparseCloudsAreAllowedTheirSpacing) {
 TEST(Verdict, WithoutASkeletonOrARadiusThoseChecksAreLeftOut) {
   QualityMetrics m = good_metrics();
   m.inward_faces = -1;
+  m.cloud_spacing = 0;
   Verdict verdict = judge_mesh(m, 0.0);
   EXPECT_EQ(verdict.checks.size(), 5u);
   for (const auto& check : verdict.checks) {
@@ -108,7 +113,7 @@ TEST(Verdict, JsonHoldsEveryCheckWithItsBound) {
   m.folded_edges = 3;
   nlohmann::json j = to_json(judge_mesh(m, 1.0));
   EXPECT_FALSE(j["passed"].get<bool>());
-  ASSERT_EQ(j["checks"].size(), 8u);
+  ASSERT_EQ(j["checks"].size(), 9u);
   for (const auto& check : j["checks"]) {
     EXPECT_TRUE(check.contains("value") && check.contains("threshold") && check.contains("comparison"));
     if (check["name"] == "folded_edges") {

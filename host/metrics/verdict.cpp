@@ -1,5 +1,6 @@
 #include "metrics/verdict.h"
 
+#include <cmath>
 #include <cstdio>
 
 namespace mcquad {
@@ -39,7 +40,7 @@ std::vector<const VerdictCheck*> Verdict::failures() const {
   return failed;
 }
 
-Verdict judge_mesh(const QualityMetrics& m, double median_radius, const VerdictThresholds& t) {
+Verdict judge_mesh(const QualityMetrics& m, double median_radius, long open_ends, const VerdictThresholds& t) {
   Verdict verdict;
   auto& checks = verdict.checks;
   checks.push_back(make_check("all_quads", "fraction of the faces that are quads", m.statistics.quad_fraction,
@@ -54,6 +55,16 @@ Verdict judge_mesh(const QualityMetrics& m, double median_radius, const VerdictT
   checks.push_back(make_check("min_scaled_jacobian",
                               "the worst quad corner's signed sine (at or below 0: an inverted or degenerate quad)",
                               m.quad_shape.min_scaled_jacobian, Bound::kAbove, t.min_scaled_jacobian));
+  if (open_ends >= 0)
+    checks.push_back(make_check("open_ends", "boundary loops of the mesh beyond the open ends of the skeleton's tubes "
+                                "(a hole torn or an end closed that should not be)",
+                                std::fabs(double(m.statistics.boundary_loops) - double(open_ends)), Bound::kAtMost, 0));
+  // The paper's error level is the mean distance to the cells' planes: on a
+  // fitted mesh it is a fraction of the point spacing (0.23 on the T, 0.15
+  // on the knot); a mesh still far from the cloud is many spacings off.
+  if (m.cloud_spacing > 0)
+    checks.push_back(make_check("error_level", "the paper's error level (mean distance to the cells' planes), in point spacings",
+                                m.error_level / m.cloud_spacing, Bound::kAtMost, t.error_level_per_spacing));
   if (m.inward_faces >= 0 && m.statistics.faces > 0)
     checks.push_back(make_check("inward_faces", "fraction of the faces turned into the tube (against the skeleton)",
                                 double(m.inward_faces) / double(m.statistics.faces), Bound::kAtMost,

@@ -36,11 +36,14 @@ struct VerdictThresholds {
   double cloud_to_mesh_p95 = 0.05;            //!< uncovered cloud: 95 % of the points within this
   double mesh_to_cloud_mean = 0.02;           //!< the mesh's mean distance to the cloud (plus the cloud's spacing)
   double min_scaled_jacobian = 0.0;           //!< every quad's corners keep their orientation
+  double error_level_per_spacing = 1.0;       //!< the paper's error level, in point spacings
 };
 
 //! Judges a mesh by its metrics. `median_radius` scales the distances (0:
 //! the distance checks are left out, as nothing says what is near).
-Verdict judge_mesh(const QualityMetrics& metrics, double median_radius,
+//! `open_ends`: the boundary loops the mesh must have, one per open end the
+//! construction left against the skeleton (-1: not checked).
+Verdict judge_mesh(const QualityMetrics& metrics, double median_radius, long open_ends = -1,
                    const VerdictThresholds& thresholds = VerdictThresholds());
 
 //! {"passed", "checks": [{"name", "passed", "value", "threshold", "comparison", "description", "sites"}]}

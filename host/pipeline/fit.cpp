@@ -217,7 +217,7 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
   if (options.measure) {
     QualityMetrics quality = timer.run("metrics", [&] { return measure_quality(result.mesh, cloud, cells, &graph); });
     report["metrics"] = to_json(quality);
-    result.verdict = judge_mesh(quality, median_radius);
+    result.verdict = judge_mesh(quality, median_radius, initial.open_ends);
     report["verdict"] = to_json(*result.verdict);
   }
   if (!options.surfaces.cad_path.empty() || !options.surfaces.control_nets_path.empty())

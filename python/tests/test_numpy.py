@@ -68,7 +68,8 @@ def test_result_is_a_quad_mesh_with_a_verdict(t_shape):
     assert result.vertices.dtype == np.float64 and result.vertices.shape[1] == 3
     assert result.faces.shape[1] == 4 and result.faces.min() == 0 and result.faces.max() == len(result.vertices) - 1
     names = {check["name"] for check in result.verdict.checks}
-    assert {"intersecting_face_pairs", "folded_edges", "uncovered_cloud", "mesh_off_cloud", "inward_faces"} <= names
+    assert {"intersecting_face_pairs", "folded_edges", "uncovered_cloud", "mesh_off_cloud", "inward_faces",
+            "open_ends", "error_level"} <= names
     assert result.verdict.passed, result.verdict.failures
 
 
