@@ -175,11 +175,12 @@ struct FitCommand {
                 m["irregular_vertices"].get<size_t>());
     if (r.contains("evolution")) {
       const auto& e = r["evolution"];
-      std::printf("backend: %s on %s; error level %.4g -> %.4g after %zu iterations\n",
+      std::printf("backend: %s on %s; error level (mean distance to the cloud's local planes) %.4g -> %.4g after %zu iterations\n",
                   r["backend"]["name"].get<std::string>().c_str(), r["backend"]["device"].get<std::string>().c_str(),
                   e["initial_error_level"].get<double>(), e["final_error_level"].get<double>(), e["iterations"].size());
       const auto& q = r["metrics"];
-      std::printf("distance mesh->cloud mean %.4g p95 %.4g; cloud->mesh mean %.4g p95 %.4g; %zu intersecting face pairs\n",
+      std::printf("distances: vertices to their nearest cloud point mean %.4g, 95 %% within %.4g; cloud points to the mesh "
+                  "mean %.4g, 95 %% within %.4g; %zu pairs of faces cross\n",
                   q["mesh_to_cloud"]["mean"].get<double>(), q["mesh_to_cloud"]["p95"].get<double>(),
                   q["cloud_to_mesh"]["mean"].get<double>(), q["cloud_to_mesh"]["p95"].get<double>(),
                   q["intersecting_face_pairs"].get<size_t>());

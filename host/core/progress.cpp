@@ -16,8 +16,16 @@ ProgressSink& thread_sink() {
 
 void set_progress_sink(ProgressSink sink) { thread_sink() = std::move(sink); }
 
-void report_stage(const std::string& stage, bool finished) {
-  if (thread_sink()) thread_sink()(stage, finished ? 1 : 0, 1);
+void report_stage(const std::string& stage, bool finished, double seconds) {
+  if (thread_sink()) {
+    thread_sink()(stage, finished ? 1 : 0, 1);
+    return;
+  }
+  if (isatty(STDERR_FILENO) == 0) return;
+  if (!finished) std::fprintf(stderr, "\r%s ...\033[K", stage.c_str());
+  else if (seconds >= 1.0) std::fprintf(stderr, "\r%s: %.1f s\033[K\n", stage.c_str(), seconds);
+  else std::fprintf(stderr, "\r\033[K");
+  std::fflush(stderr);
 }
 
 Progress::Progress(std::string label, size_t total)

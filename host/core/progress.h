@@ -15,9 +15,11 @@ using ProgressSink = std::function<void(const std::string& label, size_t done, s
 //! side in one process each report to their own caller.
 void set_progress_sink(ProgressSink sink);
 
-//! A pipeline stage began (done 0 of 1) or ended (1 of 1): for the sink
-//! only, the terminal shows the long stages' own progress.
-void report_stage(const std::string& stage, bool finished);
+//! A pipeline stage began (done 0 of 1) or ended (1 of 1, after `seconds`).
+//! To the sink when there is one; else, when stderr is a terminal, the
+//! stage's name while it runs, kept with its time when it took a second or
+//! more; nothing on pipes and in logs.
+void report_stage(const std::string& stage, bool finished, double seconds = 0);
 
 //! Progress on a long stage: to this thread's sink when there is one, else
 //! shown on stderr when it is a terminal, silent otherwise (pipes, CI logs,

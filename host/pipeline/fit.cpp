@@ -61,7 +61,7 @@ class StageTimer {
     } record{this, stage, start};
     report_stage(stage, false);
     auto result = work();
-    report_stage(stage, true);
+    report_stage(stage, true, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     return result;
   }
   nlohmann::json seconds = nlohmann::json::object();
