@@ -1,5 +1,7 @@
 #include "metrics/mesh_metrics.h"
 
+#include <numeric>
+
 #include <set>
 
 #include "evolution/shared_math.h"
@@ -58,7 +60,11 @@ MeshStatistics mesh_statistics(const QuadMesh& mesh) {
 }
 
 size_t inward_faces(const QuadMesh& mesh, const SkeletonGraph& skeleton) {
-  size_t inward = 0;
+  return inward_face_indices(mesh, skeleton).size();
+}
+
+std::vector<int> inward_face_indices(const QuadMesh& mesh, const SkeletonGraph& skeleton) {
+  std::vector<int> inward;
   std::vector<double> distance(skeleton.edges.size());
   std::vector<Eigen::Vector3d> nearest(skeleton.edges.size());
   for (auto f : mesh.faces()) {
@@ -91,7 +97,7 @@ size_t inward_faces(const QuadMesh& mesh, const SkeletonGraph& skeleton) {
       if (distance[b] > closest + 8 * scale || distance[b] <= 0) continue;
       outward += std::exp(-(distance[b] - closest) / scale) * (centroid - nearest[b]) / distance[b];
     }
-    inward += normal.dot(outward) < 0;
+    if (normal.dot(outward) < 0) inward.push_back(f.idx());
   }
   return inward;
 }
@@ -138,13 +144,36 @@ double winding_number(const QuadMesh& mesh, const Eigen::Vector3d& p) {
   return total / (4.0 * M_PI);
 }
 
+namespace {
+
+//! Indices of the `count` largest values, largest first.
+std::vector<size_t> largest_first(const std::vector<double>& values, size_t count) {
+  std::vector<size_t> order(values.size());
+  std::iota(order.begin(), order.end(), size_t(0));
+  count = std::min(count, order.size());
+  std::partial_sort(order.begin(), order.begin() + long(count), order.end(),
+                    [&](size_t a, size_t b) { return values[a] > values[b]; });
+  order.resize(count);
+  return order;
+}
+
+}  // namespace
+
 QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, const CellTree& cells,
                                const SkeletonGraph* skeleton) {
   QualityMetrics m;
   m.statistics = mesh_statistics(mesh);
-  m.mesh_to_cloud = summarize_distances(mesh_to_cloud_distances(mesh, cells));
+  std::vector<double> off_cloud = mesh_to_cloud_distances(mesh, cells);
+  for (size_t v : largest_first(off_cloud, QualityMetrics::kMaxSites))
+    m.off_cloud_sites.push_back(point_of(mesh, QuadMesh::VertexHandle(int(v))));
+  m.mesh_to_cloud = summarize_distances(std::move(off_cloud));
   // A million points pin the percentiles down; more only cost time.
-  m.cloud_to_mesh = summarize_distances(cloud_to_mesh_distances(mesh, cloud, 1000000));
+  constexpr size_t kMaxCloudPoints = 1000000;
+  std::vector<double> uncovered = cloud_to_mesh_distances(mesh, cloud, kMaxCloudPoints);
+  size_t stride = cloud_sample_stride(cloud.size(), kMaxCloudPoints);
+  for (size_t k : largest_first(uncovered, QualityMetrics::kMaxSites))
+    m.uncovered_sites.push_back(cloud.points[k * stride].cast<double>());
+  m.cloud_to_mesh = summarize_distances(std::move(uncovered));
   double sum = 0;
   for (auto v : mesh.vertices()) {
     const auto& p = mesh.point(v);
@@ -154,13 +183,30 @@ QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, co
   }
   m.error_level = mesh.n_vertices() ? sum / mesh.n_vertices() : 0.0;
   m.cloud_spacing = cells.point_spacing;
-  if (skeleton) m.inward_faces = long(inward_faces(mesh, *skeleton));
-  m.folded_edges = folded_edges(mesh);
+  if (skeleton) {
+    std::vector<int> inward = inward_face_indices(mesh, *skeleton);
+    m.inward_faces = long(inward.size());
+    for (size_t k = 0; k < inward.size() && k < QualityMetrics::kMaxSites; ++k)
+      m.inward_sites.push_back(face_centroid(mesh, inward[k]));
+  }
+  for (auto e : mesh.edges()) {
+    if (!is_folded(mesh, e)) continue;
+    if (++m.folded_edges > QualityMetrics::kMaxSites) continue;
+    auto h = mesh.halfedge_handle(e, 0);
+    m.fold_sites.push_back(0.5 * (point_of(mesh, mesh.from_vertex_handle(h)) + point_of(mesh, mesh.to_vertex_handle(h))));
+  }
   std::vector<std::pair<int, int>> crossing = intersecting_face_pairs(mesh);
   m.intersecting_face_pairs = crossing.size();
   for (size_t k = 0; k < crossing.size() && k < QualityMetrics::kMaxCrossingSites; ++k)
     m.crossing_sites.push_back(0.5 * (face_centroid(mesh, crossing[k].first) + face_centroid(mesh, crossing[k].second)));
   m.quad_shape = measure_quad_shape(mesh);
+  std::vector<double> badness;  // minus the scaled Jacobian, so that the worst come first
+  for (auto f : mesh.faces()) {
+    std::vector<Eigen::Vector3d> corners = face_corners(mesh, f);
+    badness.push_back(corners.size() == 4 ? -scaled_jacobian(corners.data()) : 0.0);
+  }
+  for (size_t f : largest_first(badness, QualityMetrics::kMaxSites))
+    if (badness[f] >= 0) m.worst_quad_sites.push_back(face_centroid(mesh, int(f)));
   return m;
 }
 
@@ -211,9 +257,15 @@ nlohmann::json to_json(const QualityMetrics& m) {
                       {"folded_edges", m.folded_edges},
                       {"quad_shape", to_json(m.quad_shape)}};
   if (m.inward_faces >= 0) j["inward_faces"] = m.inward_faces;
-  nlohmann::json sites = nlohmann::json::array();
-  for (const Eigen::Vector3d& p : m.crossing_sites) sites.push_back({p.x(), p.y(), p.z()});
-  j["crossing_sites"] = sites;
+  auto sites = [](const std::vector<Eigen::Vector3d>& points) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const Eigen::Vector3d& p : points) out.push_back({p.x(), p.y(), p.z()});
+    return out;
+  };
+  j["crossing_sites"] = sites(m.crossing_sites);
+  j["worst_sites"] = {{"folds", sites(m.fold_sites)}, {"worst_quads", sites(m.worst_quad_sites)},
+                      {"inward_faces", sites(m.inward_sites)}, {"uncovered_cloud", sites(m.uncovered_sites)},
+                      {"farthest_vertices", sites(m.off_cloud_sites)}};
   return j;
 }
 

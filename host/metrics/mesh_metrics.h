@@ -43,6 +43,13 @@ struct QualityMetrics {
   //! first kMaxCrossingSites pairs (a user looks there first).
   std::vector<Eigen::Vector3d> crossing_sites;
   static constexpr size_t kMaxCrossingSites = 100;
+  //! The worst places for the other defects, worst first, at most kMaxSites each.
+  static constexpr size_t kMaxSites = 5;
+  std::vector<Eigen::Vector3d> fold_sites;         //!< midpoints of folded edges
+  std::vector<Eigen::Vector3d> worst_quad_sites;   //!< centroids of the quads of least scaled Jacobian (at most 0)
+  std::vector<Eigen::Vector3d> inward_sites;       //!< centroids of faces turned into the tube
+  std::vector<Eigen::Vector3d> uncovered_sites;    //!< the cloud points farthest from the mesh
+  std::vector<Eigen::Vector3d> off_cloud_sites;    //!< the vertices farthest from the cloud
   QuadShape quad_shape;
 };
 
@@ -56,6 +63,8 @@ QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, co
 //! crotch between bones counts its faces right). Approximate where the mesh
 //! is far from its bones, e.g. around a junction the mesh builder moved.
 size_t inward_faces(const QuadMesh& mesh, const SkeletonGraph& skeleton);
+//! The same faces, by index.
+std::vector<int> inward_face_indices(const QuadMesh& mesh, const SkeletonGraph& skeleton);
 
 //! Folds: edges whose two faces' normals differ by more than 120 degrees
 //! (a face flipped over its neighbour).

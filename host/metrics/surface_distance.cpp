@@ -39,12 +39,16 @@ std::vector<double> mesh_to_cloud_distances(const QuadMesh& mesh, const CellTree
   return out;
 }
 
+size_t cloud_sample_stride(size_t points, size_t max_points) {
+  return max_points > 0 ? std::max<size_t>(1, (points + max_points - 1) / max_points) : 1;
+}
+
 std::vector<double> cloud_to_mesh_distances(const QuadMesh& mesh, const PointCloud& cloud, size_t max_points) {
   MeshTriangles triangles = triangulate(mesh);
   std::vector<Eigen::Vector3f> centroids(triangles.size());
   for (size_t t = 0; t < triangles.size(); ++t) centroids[t] = triangles.centroid(t).cast<float>();
   PointIndex<float> index(centroids);
-  size_t stride = max_points > 0 ? std::max<size_t>(1, (cloud.size() + max_points - 1) / max_points) : 1;
+  size_t stride = cloud_sample_stride(cloud.size(), max_points);
   std::vector<double> out((cloud.size() + stride - 1) / stride);
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < long(out.size()); ++i) {

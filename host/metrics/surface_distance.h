@@ -29,4 +29,7 @@ std::vector<double> mesh_to_cloud_distances(const QuadMesh& mesh, const CellTree
 //! that at most that many are measured (huge clouds).
 std::vector<double> cloud_to_mesh_distances(const QuadMesh& mesh, const PointCloud& cloud, size_t max_points = 0);
 
+//! The stride cloud_to_mesh_distances takes: distance k is of point k * stride.
+size_t cloud_sample_stride(size_t points, size_t max_points);
+
 }  // namespace mcquad

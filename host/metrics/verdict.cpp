@@ -52,9 +52,11 @@ Verdict judge_mesh(const QualityMetrics& m, double median_radius, long open_ends
   checks.back().sites = m.crossing_sites;
   checks.push_back(make_check("folded_edges", "edges whose two faces fold over each other (normals over 120 degrees apart)",
                               double(m.folded_edges), Bound::kAtMost, 0));
+  checks.back().sites = m.fold_sites;
   checks.push_back(make_check("min_scaled_jacobian",
                               "the worst quad corner's signed sine (at or below 0: an inverted or degenerate quad)",
                               m.quad_shape.min_scaled_jacobian, Bound::kAbove, t.min_scaled_jacobian));
+  checks.back().sites = m.worst_quad_sites;
   if (open_ends >= 0)
     checks.push_back(make_check("open_ends", "boundary loops of the mesh beyond the open ends of the skeleton's tubes "
                                 "(a hole torn or an end closed that should not be)",
@@ -65,14 +67,17 @@ Verdict judge_mesh(const QualityMetrics& m, double median_radius, long open_ends
   if (m.cloud_spacing > 0)
     checks.push_back(make_check("error_level", "the paper's error level (mean distance to the cells' planes), in point spacings",
                                 m.error_level / m.cloud_spacing, Bound::kAtMost, t.error_level_per_spacing));
-  if (m.inward_faces >= 0 && m.statistics.faces > 0)
+  if (m.inward_faces >= 0 && m.statistics.faces > 0) {
     checks.push_back(make_check("inward_faces", "fraction of the faces turned into the tube (against the skeleton)",
                                 double(m.inward_faces) / double(m.statistics.faces), Bound::kAtMost,
                                 t.inward_face_fraction));
+    checks.back().sites = m.inward_sites;
+  }
   if (median_radius > 0) {
     checks.push_back(make_check("uncovered_cloud",
                                 "95th percentile of the cloud's distance to the mesh, over the median local radius",
                                 m.cloud_to_mesh.p95 / median_radius, Bound::kAtMost, t.cloud_to_mesh_p95));
+    checks.back().sites = m.uncovered_sites;
     // A vertex exactly on the true surface is on average about one point
     // spacing from the nearest point (0.5 / sqrt(density) for random
     // samples, against 0.47 / sqrt(density) for the median spacing), so
@@ -84,6 +89,7 @@ Verdict judge_mesh(const QualityMetrics& m, double median_radius, long open_ends
                                 "radius (bound: the threshold plus the cloud's point spacing)",
                                 m.mesh_to_cloud.mean / median_radius, Bound::kAtMost,
                                 t.mesh_to_cloud_mean + m.cloud_spacing / median_radius));
+    checks.back().sites = m.off_cloud_sites;
   }
   for (const auto& check : checks) verdict.passed = verdict.passed && check.passed;
   return verdict;
