@@ -223,7 +223,9 @@ void write_html_report_from_json(const std::string& report_path, const std::stri
   init.initial = initial_options_from(report["parameters"]);
   init.evolve = false;
   init.measure = false;
-  FitResult initial = run_fit(points, skeleton_path, init);
+  // From the cloud and skeleton already read (a copy: the fit sorts its
+  // cloud), not from the files a second time; the same mesh either way.
+  FitResult initial = run_fit(FitInput{cloud, skeleton, points, skeleton_path}, init);
   HtmlReportInput input;
   input.report = &report;
   input.final_mesh = &final_mesh;
