@@ -43,6 +43,14 @@ void print_surface_summary(const nlohmann::json& report, const std::string& cad_
 const std::vector<std::string> kMeshExtensions = {"obj", "off", "ply", "om", "stl", "stla"};
 const std::vector<std::string> kCadExtensions = {"step", "stp", "iges", "igs"};
 
+//! The failed checks on stderr, the verdict on stdout; the exit code.
+int report_verdict(const Verdict& verdict, bool strict) {
+  for (const std::string& line : verdict_warnings(verdict)) warn(line);
+  std::printf("verdict: %s (%zu of %zu checks passed)\n", verdict.passed ? "pass" : "FAIL",
+              verdict.checks.size() - verdict.failures().size(), verdict.checks.size());
+  return strict && !verdict.passed ? kExitVerdict : kExitOk;
+}
+
 struct FitCommand {
   std::string points, skeleton, output, report, html, backend = "auto", ends = "auto", stage = "refined", mode = "robust";
   std::string projection = "mean", fill_holes = "on", crossing_guard = "on", own_cells = "on", local_epsilon = "on";
@@ -148,10 +156,7 @@ struct FitCommand {
     if (!html.empty()) write_fit_html(result);
     print_summary(result.report);
     if (!result.verdict) return kExitOk;
-    for (const std::string& line : verdict_warnings(*result.verdict)) warn(line);
-    std::printf("verdict: %s (%zu of %zu checks passed)\n", result.verdict->passed ? "pass" : "FAIL",
-                result.verdict->checks.size() - result.verdict->failures().size(), result.verdict->checks.size());
-    return strict && !result.verdict->passed ? kExitVerdict : kExitOk;
+    return report_verdict(*result.verdict, strict);
   }
 
   //! The HTML report from what the fit left in memory (the cloud is read again).
@@ -221,12 +226,13 @@ int run_devices() {
 }
 
 int run_metrics(const std::string& mesh_path, const std::string& points_path, const std::string& skeleton_path,
-                const std::string& surface_path, size_t leaf_size, const std::string& json_path) {
+                const std::string& surface_path, size_t leaf_size, const std::string& json_path, bool strict) {
   QuadMesh mesh = read_mesh(mesh_path);
-  PointCloud cloud = read_point_cloud(points_path);
+  PointCloud cloud = read_point_cloud(points_path, true);
   std::unique_ptr<SkeletonData> skeleton;
   if (!skeleton_path.empty()) skeleton = std::make_unique<SkeletonData>(read_skeleton(skeleton_path));
-  nlohmann::json metrics = measure_mesh(mesh, cloud, skeleton.get(), skeleton_path, leaf_size);
+  MeshMeasurement measured = measure_mesh(mesh, cloud, skeleton.get(), skeleton_path, leaf_size);
+  nlohmann::json& metrics = measured.metrics;
   if (!surface_path.empty()) {
     nlohmann::json description;
     try {
@@ -241,7 +247,7 @@ int run_metrics(const std::string& mesh_path, const std::string& points_path, co
   }
   if (!json_path.empty()) write_text_atomically(json_path, metrics.dump(2) + "\n");
   std::printf("%s\n", metrics.dump(2).c_str());
-  return kExitOk;
+  return report_verdict(measured.verdict, strict);
 }
 
 //! Two to four lines on the surfaces: file, seams, distances.
@@ -276,9 +282,15 @@ int run_surfaces(const std::string& mesh_path, const std::string& points_path, c
   if (mesh.n_faces() == 0) throw InputError(mesh_path + ": the mesh has no faces");
   PointCloud cloud;
   if (!points_path.empty()) cloud = read_point_cloud(points_path);
-  nlohmann::json report = export_surfaces(mesh, points_path.empty() ? nullptr : &cloud, outputs);
+  VerdictCheck off_cloud;
+  nlohmann::json report = export_surfaces(mesh, points_path.empty() ? nullptr : &cloud, outputs, &off_cloud);
   if (!json_path.empty()) write_text_atomically(json_path, report.dump(2) + "\n");
   print_surface_summary(report, outputs.cad_path, !points_path.empty());
+  if (!off_cloud.name.empty()) {
+    Verdict verdict;
+    add_check(verdict, off_cloud);
+    for (const std::string& line : verdict_warnings(verdict)) warn(line);
+  }
   return kExitOk;
 }
 
@@ -323,10 +335,13 @@ int main(int argc, char** argv) {
   auto* metrics_app = app.add_subcommand("metrics", "distances both ways, error level, topology and defects of a mesh");
   metrics_app->add_option("MESH", metrics_mesh, "mesh (.obj, .off, .ply, .om)")->required();
   metrics_app->add_option("POINTS", metrics_points, "point cloud")->required();
-  metrics_app->add_option("--skeleton", metrics_skeleton, "skeleton, to count faces turned into the tube");
+  metrics_app->add_option("--skeleton", metrics_skeleton,
+                          "skeleton: the radius that scales the distance checks, the open ends, and inward faces when the cloud has no normals");
   metrics_app->add_option("--leaf-size", metrics_leaf, "maximal points per cell, for the error level (0 = as fit chooses)")->capture_default_str();
   metrics_app->add_option("--surface", metrics_surface, "a generated shape's NAME.surface.json: distances to the true surface");
   metrics_app->add_option("--json", metrics_json, "also write the metrics here");
+  bool metrics_strict = false;
+  metrics_app->add_flag("--strict", metrics_strict, "exit with code 7 when a check of the verdict fails");
 
   std::string surfaces_mesh, surfaces_points, surfaces_json;
   SurfaceOutputs surface_outputs;
@@ -367,7 +382,8 @@ int main(int argc, char** argv) {
       std::printf("HTML report: %s\n", report_html.c_str());
       return kExitOk;
     }
-    if (*metrics_app) return run_metrics(metrics_mesh, metrics_points, metrics_skeleton, metrics_surface, metrics_leaf, metrics_json);
+    if (*metrics_app) return run_metrics(metrics_mesh, metrics_points, metrics_skeleton, metrics_surface, metrics_leaf, metrics_json,
+                                           metrics_strict);
   } catch (const InputError& e) {
     std::fprintf(stderr, "mcquad: error: %s\n", e.what());
     return kExitInput;

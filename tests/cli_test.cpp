@@ -115,6 +115,17 @@ TEST(Cli, VerdictWarnsAndStrictFailsAfterWritingTheOutputs) {
   std::ifstream report(dir.file("far.json"));
   auto json = nlohmann::json::parse(report);
   EXPECT_FALSE(json["verdict"]["passed"].get<bool>());
+  EXPECT_EQ(json["metrics"]["inward_measured_against"], "scan normals");  // the generated cloud has normals
+  // metrics judges a mesh the same way: the fitted one passes, the unfitted one fails.
+  std::string skeleton = " --skeleton " + dir.file("t-shape.skeleton.obj");
+  CliRun judged = mcquad("metrics " + dir.file("good.obj") + " " + dir.file("t-shape.ply") + skeleton + " --strict");
+  EXPECT_EQ(judged.code, kExitOk) << judged.output;
+  EXPECT_NE(judged.output.find("verdict: pass (10 of 10 checks passed)"), std::string::npos) << judged.output;
+  CliRun far = mcquad("metrics " + dir.file("far.obj") + " " + dir.file("t-shape.ply") + skeleton);
+  EXPECT_EQ(far.code, kExitOk) << far.output;
+  EXPECT_NE(far.output.find("check failed: uncovered_cloud"), std::string::npos) << far.output;
+  EXPECT_EQ(mcquad("metrics " + dir.file("far.obj") + " " + dir.file("t-shape.ply") + skeleton + " --strict").code,
+            kExitVerdict);
 }
 
 TEST(Cli, BadInputsGiveOneLineAndDocumentedCodes) {
@@ -155,6 +166,15 @@ TEST(Cli, SurfacesFromFitAndFromAMesh) {
   const auto& surfaces = json["surfaces"];
   EXPECT_EQ(surfaces["cad_file"]["faces_read_back"], surfaces["layout"]["regions"]);
   EXPECT_TRUE(std::filesystem::exists(dir.file("nets.obj")));
+  // The surfaces' own check joins the verdict, with its figure from the surface checks.
+  bool judged = false;
+  for (const auto& check : json["verdict"]["checks"])
+    if (check["name"] == "surfaces_off_cloud") {
+      judged = true;
+      EXPECT_EQ(check["value"].get<double>(), surfaces["checks"]["faces_off_cloud"].get<double>());
+      EXPECT_EQ(check["sites"].size(), std::min<size_t>(20 /* kMaxOffCloudSites */, surfaces["checks"]["off_cloud_sites"].size()));
+    }
+  EXPECT_TRUE(judged) << json["verdict"].dump();
   CliRun iges = mcquad("surfaces " + dir.file("t.obj") + " -o " + dir.file("t.igs") + " --cloud " + points + " --json " + dir.file("s.json"));
   ASSERT_EQ(iges.code, 0) << iges.output;
   EXPECT_NE(iges.output.find("distance to the cloud"), std::string::npos) << iges.output;

@@ -13,6 +13,8 @@ QualityMetrics good_metrics() {
   m.statistics.faces = 1000;
   m.statistics.quad_fraction = 1.0;
   m.inward_faces = 0;
+  m.inward_area_fraction = 0;
+  m.inward_reference = "scan normals";
   m.quad_shape.min_scaled_jacobian = 0.6;
   m.cloud_to_mesh.p95 = 0.01;
   m.mesh_to_cloud.mean = 0.01;
@@ -63,7 +65,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadFigure{"intersecting_face_pairs", [](QualityMetrics& m) { m.intersecting_face_pairs = 1; }},
                       BadFigure{"folded_edges", [](QualityMetrics& m) { m.folded_edges = 2; }},
                       BadFigure{"min_scaled_jacobian", [](QualityMetrics& m) { m.quad_shape.min_scaled_jacobian = -0.1; }},
-                      BadFigure{"inward_faces", [](QualityMetrics& m) { m.inward_faces = 6; }},
+                      BadFigure{"inward_faces", [](QualityMetrics& m) { m.inward_area_fraction = 0.006; }},
                       BadFigure{"uncovered_cloud", [](QualityMetrics& m) { m.cloud_to_mesh.p95 = 0.06; }},
                       BadFigure{"mesh_off_cloud", [](QualityMetrics& m) { m.mesh_to_cloud.mean = 0.03; }},
                       BadFigure{"open_ends", [](QualityMetrics& m) { m.statistics.boundary_loops = 1; }},
@@ -79,12 +81,24 @@ TEST(Verdict, CrossingSitesAreNamedInTheWarning) {
   EXPECT_NE(warnings[0].find("at (1.5, -2, 3)"), std::string::npos) << warnings[0];
 }
 
-TEST(Verdict, InwardFacesAtTheBoundPassAndJustAboveFail) {
+TEST(Verdict, InwardAreaAtTheBoundPassesAndJustAboveFails) {
   QualityMetrics m = good_metrics();
-  m.inward_faces = 5;  // 0.5 % of 1000
+  m.inward_area_fraction = 0.005;
   EXPECT_TRUE(check_named(judge_mesh(m, 1.0), "inward_faces").passed);
-  m.inward_faces = 6;
-  EXPECT_FALSE(check_named(judge_mesh(m, 1.0), "inward_faces").passed);
+  m.inward_area_fraction = 0.0051;
+  const VerdictCheck& check = check_named(judge_mesh(m, 1.0), "inward_faces");
+  EXPECT_FALSE(check.passed);
+  EXPECT_NE(check.description.find("scan normals"), std::string::npos) << check.description;
+}
+
+TEST(Verdict, ATornHoleIsNamedByItsBoundaryLoop) {
+  QualityMetrics m = good_metrics();
+  m.statistics.boundary_loops = 2;
+  m.boundary_sites = {Eigen::Vector3d(0, 0, 5), Eigen::Vector3d(2, 0.5, 1)};
+  const VerdictCheck& check = check_named(judge_mesh(m, 1.0, 1), "open_ends");
+  EXPECT_FALSE(check.passed);
+  EXPECT_EQ(check.sites.size(), 2u);
+  EXPECT_TRUE(check_named(judge_mesh(m, 1.0, 2), "open_ends").passed);
 }
 
 TEST(Verdict, SparseCloudsAreAllowedTheirSpacing) {
@@ -99,6 +113,7 @@ TEST(Verdict, SparseCloudsAreAllowedTheirSpacing) {
 TEST(Verdict, WithoutASkeletonOrARadiusThoseChecksAreLeftOut) {
   QualityMetrics m = good_metrics();
   m.inward_faces = -1;
+  m.inward_area_fraction = -1;
   m.cloud_spacing = 0;
   Verdict verdict = judge_mesh(m, 0.0);
   EXPECT_EQ(verdict.checks.size(), 5u);

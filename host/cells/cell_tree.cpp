@@ -6,6 +6,7 @@
 #include <nanoflann.hpp>
 
 #include "core/errors.h"
+#include "core/point_index.h"
 #include "evolution/shared_math.h"
 
 namespace mcquad {
@@ -122,21 +123,6 @@ void count_nodes(const KdNode* node, size_t& nodes, size_t& leaves) {
   count_nodes(node->child2, nodes, leaves);
 }
 
-//! Median distance from a point to its nearest neighbour, over a
-//! deterministic subsample of at most about 2000 points.
-double typical_spacing(const PointCloud& cloud, const KdTree& tree) {
-  std::vector<double> gaps;
-  size_t stride = std::max<size_t>(1, cloud.size() / 2000);
-  for (size_t i = 0; i < cloud.size(); i += stride) {
-    uint32_t index[2];
-    float distance2[2];
-    if (tree.knnSearch(cloud.points[i].data(), 2, index, distance2) == 2) gaps.push_back(std::sqrt(double(distance2[1])));
-  }
-  if (gaps.empty()) return 0.0;
-  std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
-  return gaps[gaps.size() / 2];
-}
-
 }  // namespace
 
 size_t CellTree::byte_size() const {
@@ -162,7 +148,7 @@ CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size, bool pad_box
   cells.node_bounds.reserve(6 * nodes);
   cells.node_children.reserve(2 * nodes);
   cells.cell_offsets.push_back(0);
-  cells.point_spacing = typical_spacing(cloud, tree);
+  cells.point_spacing = median_neighbour_spacing(cloud.points, tree);
   Flattener(cloud, tree, cells, pad_boxes ? float(cells.point_spacing) : 0.0f).flatten(tree.root_node, 0);
   if (cells.depth > MCQ_MAX_TREE_DEPTH)
     throw UnsupportedError("the cell tree is " + std::to_string(cells.depth) + " levels deep, more than the " +

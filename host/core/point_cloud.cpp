@@ -1,6 +1,7 @@
 #include "core/point_cloud.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <numeric>
 
@@ -58,6 +59,21 @@ void sort_spatially(PointCloud& cloud) {
   };
   permute(cloud.points);
   if (cloud.normals.size() == cloud.size()) permute(cloud.normals);
+}
+
+OrientedSample oriented_sample(const PointCloud& cloud, size_t max_points) {
+  OrientedSample sample;
+  if (cloud.normals.size() != cloud.size() || max_points == 0) return sample;
+  size_t stride = std::max<size_t>(1, (cloud.size() + max_points - 1) / max_points);
+  for (size_t i = 0; i < cloud.size(); i += stride) {
+    const Eigen::Vector3f& n = cloud.normals[i];
+    float length = n.norm();
+    // Generated outliers and some scanners' unknowns carry zero normals.
+    if (!std::isfinite(length) || length < 1e-6f) continue;
+    sample.points.push_back(cloud.points[i]);
+    sample.normals.push_back(n / length);
+  }
+  return sample;
 }
 
 void check_point_cloud(const PointCloud& cloud, const std::string& name) {

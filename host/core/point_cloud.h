@@ -18,6 +18,19 @@ struct PointCloud {
   const float* data() const { return reinterpret_cast<const float*>(points.data()); }
 };
 
+//! Points with the scan's own outward normals: what a fitted mesh's
+//! orientation is judged against. A strided sample keeps the memory small
+//! on huge clouds while pinning the fraction of faces down.
+struct OrientedSample {
+  std::vector<Eigen::Vector3f> points;
+  std::vector<Eigen::Vector3f> normals;  //!< unit, one per point
+  bool empty() const { return points.empty(); }
+};
+
+//! Every k-th point with a usable normal (finite, nonzero), at most about
+//! `max_points` of them; empty when the cloud has no normals.
+OrientedSample oriented_sample(const PointCloud& cloud, size_t max_points = 1000000);
+
 //! Reorders the points along a Morton (Z-order) curve, so that points near in
 //! space are near in memory: every kd-tree built and searched afterwards
 //! touches far fewer cache lines. Scans come in arbitrary order, and no

@@ -1,12 +1,32 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <nanoflann.hpp>
 #include <vector>
 
 namespace mcquad {
+
+//! The cloud's typical point spacing: the median distance from a point to
+//! its nearest neighbour, over a deterministic subsample of about 2000
+//! points (enough for a median). `tree` is any nanoflann index over
+//! `points` with 32-bit indices.
+template <typename Tree, typename Point>
+double median_neighbour_spacing(const std::vector<Point>& points, const Tree& tree) {
+  std::vector<double> gaps;
+  size_t stride = std::max<size_t>(1, points.size() / 2000);
+  for (size_t i = 0; i < points.size(); i += stride) {
+    uint32_t index[2];
+    typename Point::Scalar distance2[2];
+    if (tree.knnSearch(points[i].data(), 2, index, distance2) == 2) gaps.push_back(std::sqrt(double(distance2[1])));
+  }
+  if (gaps.empty()) return 0.0;
+  std::nth_element(gaps.begin(), gaps.begin() + long(gaps.size() / 2), gaps.end());
+  return gaps[gaps.size() / 2];
+}
 
 //! Nearest-neighbour index over a vector of 3D points (nanoflann through an
 //! adaptor, so the points are indexed in place, not copied). The points must
@@ -54,6 +74,9 @@ class PointIndex {
     for (const auto& m : matches) indices.push_back(m.first);
     return indices;
   }
+
+  //! See median_neighbour_spacing.
+  double median_spacing() const { return median_neighbour_spacing(adaptor_.points, tree_); }
 
  private:
   struct Adaptor {

@@ -4,6 +4,7 @@
 
 #include <set>
 
+#include "core/point_index.h"
 #include "evolution/shared_math.h"
 #include "metrics/face_intersections.h"
 #include "skeleton/bone_assignment.h"
@@ -19,6 +20,25 @@ std::vector<int> irregular_vertices(const QuadMesh& mesh) {
   return out;
 }
 
+std::vector<Eigen::Vector3d> boundary_loop_centres(const QuadMesh& mesh) {
+  std::vector<Eigen::Vector3d> centres;
+  std::set<int> seen;
+  for (auto h : mesh.halfedges()) {
+    if (!mesh.is_boundary(h) || seen.count(h.idx())) continue;
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    int corners = 0;
+    auto walk = h;
+    do {
+      seen.insert(walk.idx());
+      sum += point_of(mesh, mesh.to_vertex_handle(walk));
+      ++corners;
+      walk = mesh.next_halfedge_handle(walk);
+    } while (walk != h);
+    centres.push_back(sum / corners);
+  }
+  return centres;
+}
+
 MeshStatistics mesh_statistics(const QuadMesh& mesh) {
   MeshStatistics s;
   s.vertices = mesh.n_vertices();
@@ -29,16 +49,7 @@ MeshStatistics mesh_statistics(const QuadMesh& mesh) {
   s.euler_characteristic = long(s.vertices) - long(s.edges) + long(s.faces);
   s.irregular_vertices = irregular_vertices(mesh).size();
   for (auto v : mesh.vertices()) s.non_manifold_vertices += !mesh.is_manifold(v);
-  std::set<int> seen;
-  for (auto h : mesh.halfedges()) {
-    if (!mesh.is_boundary(h) || seen.count(h.idx())) continue;
-    ++s.boundary_loops;
-    auto walk = h;
-    do {
-      seen.insert(walk.idx());
-      walk = mesh.next_halfedge_handle(walk);
-    } while (walk != h);
-  }
+  s.boundary_loops = boundary_loop_centres(mesh).size();
   std::vector<int> component(mesh.n_vertices(), -1);
   for (auto start : mesh.vertices()) {
     if (component[start.idx()] >= 0) continue;
@@ -159,8 +170,36 @@ std::vector<size_t> largest_first(const std::vector<double>& values, size_t coun
 
 }  // namespace
 
+std::vector<int> faces_against_normals(const QuadMesh& mesh, const OrientedSample& oriented) {
+  PointIndex<float> index(oriented.points);
+  std::vector<char> against(mesh.n_faces(), 0);
+#pragma omp parallel for schedule(static)
+  for (long f = 0; f < long(mesh.n_faces()); ++f) {
+    std::vector<Eigen::Vector3d> corners = face_corners(mesh, mesh.face_handle(int(f)));
+    if (corners.size() < 3) continue;
+    Eigen::Vector3d normal = corners.size() == 4 ? quad_vector_area(corners) : (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+    long nearest = index.nearest(face_centroid(mesh, int(f)).cast<float>()).first;
+    if (nearest >= 0) against[size_t(f)] = normal.dot(oriented.normals[size_t(nearest)].cast<double>()) < 0;
+  }
+  std::vector<int> faces;
+  for (size_t f = 0; f < against.size(); ++f)
+    if (against[f]) faces.push_back(int(f));
+  return faces;
+}
+
+double area_fraction(const QuadMesh& mesh, const std::vector<int>& faces) {
+  auto area = [&](QuadMesh::FaceHandle f) {
+    std::vector<Eigen::Vector3d> c = face_corners(mesh, f);
+    return c.size() == 4 ? 0.5 * quad_vector_area(c).norm() : c.size() == 3 ? 0.5 * (c[1] - c[0]).cross(c[2] - c[0]).norm() : 0.0;
+  };
+  double total = 0, part = 0;
+  for (auto f : mesh.faces()) total += area(f);
+  for (int f : faces) part += area(mesh.face_handle(f));
+  return total > 0 ? part / total : 0.0;
+}
+
 QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, const CellTree& cells,
-                               const SkeletonGraph* skeleton) {
+                               const SkeletonGraph* skeleton, const OrientedSample* oriented) {
   QualityMetrics m;
   m.statistics = mesh_statistics(mesh);
   std::vector<double> off_cloud = mesh_to_cloud_distances(mesh, cells);
@@ -183,12 +222,19 @@ QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, co
   }
   m.error_level = mesh.n_vertices() ? sum / mesh.n_vertices() : 0.0;
   m.cloud_spacing = cells.point_spacing;
-  if (skeleton) {
-    std::vector<int> inward = inward_face_indices(mesh, *skeleton);
+  if ((oriented && !oriented->empty()) || skeleton) {
+    bool by_normals = oriented && !oriented->empty();
+    std::vector<int> inward = by_normals ? faces_against_normals(mesh, *oriented) : inward_face_indices(mesh, *skeleton);
+    m.inward_reference = by_normals ? "scan normals" : "skeleton";
     m.inward_faces = long(inward.size());
-    for (size_t k = 0; k < inward.size() && k < QualityMetrics::kMaxSites; ++k)
-      m.inward_sites.push_back(face_centroid(mesh, inward[k]));
+    m.inward_area_fraction = area_fraction(mesh, inward);
+    std::vector<double> areas;
+    for (int f : inward) areas.push_back(quad_vector_area(face_corners(mesh, mesh.face_handle(f))).norm());
+    for (size_t k : largest_first(areas, QualityMetrics::kMaxSites)) m.inward_sites.push_back(face_centroid(mesh, inward[k]));
   }
+  std::vector<Eigen::Vector3d> loops = boundary_loop_centres(mesh);
+  if (loops.size() > QualityMetrics::kMaxSites) loops.resize(QualityMetrics::kMaxSites);
+  m.boundary_sites = std::move(loops);
   for (auto e : mesh.edges()) {
     if (!is_folded(mesh, e)) continue;
     if (++m.folded_edges > QualityMetrics::kMaxSites) continue;
@@ -256,7 +302,11 @@ nlohmann::json to_json(const QualityMetrics& m) {
                       {"intersecting_face_pairs", m.intersecting_face_pairs},
                       {"folded_edges", m.folded_edges},
                       {"quad_shape", to_json(m.quad_shape)}};
-  if (m.inward_faces >= 0) j["inward_faces"] = m.inward_faces;
+  if (m.inward_faces >= 0) {
+    j["inward_faces"] = m.inward_faces;
+    j["inward_area_fraction"] = m.inward_area_fraction;
+    j["inward_measured_against"] = m.inward_reference;
+  }
   auto sites = [](const std::vector<Eigen::Vector3d>& points) {
     nlohmann::json out = nlohmann::json::array();
     for (const Eigen::Vector3d& p : points) out.push_back({p.x(), p.y(), p.z()});
@@ -264,7 +314,8 @@ nlohmann::json to_json(const QualityMetrics& m) {
   };
   j["crossing_sites"] = sites(m.crossing_sites);
   j["worst_sites"] = {{"folds", sites(m.fold_sites)}, {"worst_quads", sites(m.worst_quad_sites)},
-                      {"inward_faces", sites(m.inward_sites)}, {"uncovered_cloud", sites(m.uncovered_sites)},
+                      {"inward_faces", sites(m.inward_sites)}, {"open_ends", sites(m.boundary_sites)},
+                      {"uncovered_cloud", sites(m.uncovered_sites)},
                       {"farthest_vertices", sites(m.off_cloud_sites)}};
   return j;
 }

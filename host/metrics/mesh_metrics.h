@@ -1,6 +1,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 #include "cells/cell_tree.h"
@@ -26,6 +27,9 @@ struct MeshStatistics {
 
 MeshStatistics mesh_statistics(const QuadMesh& mesh);
 
+//! The centre (mean of the corners) of each boundary loop of the mesh.
+std::vector<Eigen::Vector3d> boundary_loop_centres(const QuadMesh& mesh);
+
 //! Indices of irregular vertices (valence != 4 inside, != 3 on a boundary).
 std::vector<int> irregular_vertices(const QuadMesh& mesh);
 
@@ -36,7 +40,9 @@ struct QualityMetrics {
   DistanceSummary cloud_to_mesh;   //!< over at most a million evenly strided cloud points
   double error_level = 0;          //!< the paper's e-bar
   double cloud_spacing = 0;        //!< the cloud's median nearest-neighbour distance: no mesh is nearer on average
-  long inward_faces = -1;          //!< faces whose normal points into the tube (-1: no skeleton)
+  long inward_faces = -1;          //!< faces facing inward (-1: nothing to tell inward by)
+  double inward_area_fraction = -1;  //!< their share of the mesh's area (-1: not measured)
+  std::string inward_reference;    //!< what "inward" is measured against: "scan normals" or "skeleton"
   size_t folded_edges = 0;         //!< edges between faces folded over each other
   size_t intersecting_face_pairs = 0;
   //! Where faces cross: the midpoint of each pair's face centroids, for the
@@ -47,16 +53,25 @@ struct QualityMetrics {
   static constexpr size_t kMaxSites = 5;
   std::vector<Eigen::Vector3d> fold_sites;         //!< midpoints of folded edges
   std::vector<Eigen::Vector3d> worst_quad_sites;   //!< centroids of the quads of least scaled Jacobian (at most 0)
-  std::vector<Eigen::Vector3d> inward_sites;       //!< centroids of faces turned into the tube
+  std::vector<Eigen::Vector3d> inward_sites;       //!< centroids of the largest faces facing inward
   std::vector<Eigen::Vector3d> uncovered_sites;    //!< the cloud points farthest from the mesh
   std::vector<Eigen::Vector3d> off_cloud_sites;    //!< the vertices farthest from the cloud
+  std::vector<Eigen::Vector3d> boundary_sites;     //!< the centres of the mesh's boundary loops (holes and open ends)
   QuadShape quad_shape;
 };
 
-//! Measures a mesh against its cloud (and skeleton, when given, for the
-//! faces turned into the tube).
+//! Measures a mesh against its cloud. Which faces face inward is told by the
+//! scan's own normals when `oriented` has any (the truth a user sees), else
+//! by the skeleton when given (an approximation), else not measured.
 QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, const CellTree& cells,
-                               const SkeletonGraph* skeleton);
+                               const SkeletonGraph* skeleton, const OrientedSample* oriented = nullptr);
+
+//! Faces whose normal points against the scan's normal at the oriented
+//! point nearest their centroid.
+std::vector<int> faces_against_normals(const QuadMesh& mesh, const OrientedSample& oriented);
+
+//! The share of the mesh's area that the given faces cover.
+double area_fraction(const QuadMesh& mesh, const std::vector<int>& faces);
 
 //! Faces whose normal points into the tube: toward the skeleton instead of
 //! away (away from a smooth minimum of the distances to the bones, so a

@@ -10,17 +10,6 @@ constexpr size_t kSitesInWarning = 3;
 
 using Bound = VerdictCheck::Bound;
 
-VerdictCheck make_check(std::string name, std::string description, double value, Bound bound, double threshold) {
-  VerdictCheck check;
-  check.name = std::move(name);
-  check.description = std::move(description);
-  check.value = value;
-  check.threshold = threshold;
-  check.bound = bound;
-  check.passed = bound == Bound::kAtMost ? value <= threshold : bound == Bound::kAtLeast ? value >= threshold : value > threshold;
-  return check;
-}
-
 const char* bound_words(Bound bound) {
   return bound == Bound::kAtMost ? "at most" : bound == Bound::kAtLeast ? "at least" : "above";
 }
@@ -32,6 +21,22 @@ std::string format_number(double value) {
 }
 
 }  // namespace
+
+VerdictCheck make_check(std::string name, std::string description, double value, Bound bound, double threshold) {
+  VerdictCheck check;
+  check.name = std::move(name);
+  check.description = std::move(description);
+  check.value = value;
+  check.threshold = threshold;
+  check.bound = bound;
+  check.passed = bound == Bound::kAtMost ? value <= threshold : bound == Bound::kAtLeast ? value >= threshold : value > threshold;
+  return check;
+}
+
+void add_check(Verdict& verdict, VerdictCheck check) {
+  verdict.passed = verdict.passed && check.passed;
+  verdict.checks.push_back(std::move(check));
+}
 
 std::vector<const VerdictCheck*> Verdict::failures() const {
   std::vector<const VerdictCheck*> failed;
@@ -57,20 +62,23 @@ Verdict judge_mesh(const QualityMetrics& m, double median_radius, long open_ends
                               "the worst quad corner's signed sine (at or below 0: an inverted or degenerate quad)",
                               m.quad_shape.min_scaled_jacobian, Bound::kAbove, t.min_scaled_jacobian));
   checks.back().sites = m.worst_quad_sites;
-  if (open_ends >= 0)
+  if (open_ends >= 0) {
     checks.push_back(make_check("open_ends", "boundary loops of the mesh beyond the open ends of the skeleton's tubes "
                                 "(a hole torn or an end closed that should not be)",
                                 std::fabs(double(m.statistics.boundary_loops) - double(open_ends)), Bound::kAtMost, 0));
+    checks.back().sites = m.boundary_sites;  // a torn hole is one of them; a closed end is missing
+  }
   // The paper's error level is the mean distance to the cells' planes: on a
   // fitted mesh it is a fraction of the point spacing (0.23 on the T, 0.15
   // on the knot); a mesh still far from the cloud is many spacings off.
   if (m.cloud_spacing > 0)
     checks.push_back(make_check("error_level", "the paper's error level (mean distance to the cells' planes), in point spacings",
                                 m.error_level / m.cloud_spacing, Bound::kAtMost, t.error_level_per_spacing));
-  if (m.inward_faces >= 0 && m.statistics.faces > 0) {
-    checks.push_back(make_check("inward_faces", "fraction of the faces turned into the tube (against the skeleton)",
-                                double(m.inward_faces) / double(m.statistics.faces), Bound::kAtMost,
-                                t.inward_face_fraction));
+  if (m.inward_area_fraction >= 0 && m.statistics.faces > 0) {
+    checks.push_back(make_check("inward_faces",
+                                "share of the mesh's area facing inward (against the " +
+                                    (m.inward_reference.empty() ? std::string("skeleton") : m.inward_reference) + ")",
+                                m.inward_area_fraction, Bound::kAtMost, t.inward_area_fraction));
     checks.back().sites = m.inward_sites;
   }
   if (median_radius > 0) {

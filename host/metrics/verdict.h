@@ -32,7 +32,7 @@ struct Verdict {
 
 //! The bounds, as fractions of the median local radius where they are lengths.
 struct VerdictThresholds {
-  double inward_face_fraction = 0.005;        //!< faces turned into the tube, of all faces
+  double inward_area_fraction = 0.005;        //!< area facing inward, of the mesh's area
   double cloud_to_mesh_p95 = 0.05;            //!< uncovered cloud: 95 % of the points within this
   double mesh_to_cloud_mean = 0.02;           //!< the mesh's mean distance to the cloud (plus the cloud's spacing)
   double min_scaled_jacobian = 0.0;           //!< every quad's corners keep their orientation
@@ -45,6 +45,14 @@ struct VerdictThresholds {
 //! construction left against the skeleton (-1: not checked).
 Verdict judge_mesh(const QualityMetrics& metrics, double median_radius, long open_ends = -1,
                    const VerdictThresholds& thresholds = VerdictThresholds());
+
+//! A check from its figure and bound (passed set from them).
+VerdictCheck make_check(std::string name, std::string description, double value, VerdictCheck::Bound bound,
+                        double threshold);
+
+//! Adds a check made after the mesh was judged (the surfaces' own), keeping
+//! `passed` the conjunction of all checks.
+void add_check(Verdict& verdict, VerdictCheck check);
 
 //! {"passed", "checks": [{"name", "passed", "value", "threshold", "comparison", "description", "sites"}]}
 nlohmann::json to_json(const Verdict& verdict);

@@ -136,6 +136,10 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
   PointCloud& cloud = input.cloud;
   const std::string& points_path = input.points_name;
   const std::string& skeleton_path = input.skeleton_name;
+  // The scan's normals judge the mesh's orientation at the end; a sample of
+  // them is enough, and the rest need not be sorted and carried along.
+  OrientedSample oriented = oriented_sample(cloud);
+  std::vector<Eigen::Vector3f>().swap(cloud.normals);
   timer.run("sort_points", [&] { sort_spatially(cloud); return 0; });
   SkeletonGraph graph = build_skeleton_graph(input.skeleton, skeleton_path);
   // The index serves the radii and the initial mesh, then goes before the cells are built.
@@ -215,13 +219,21 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
                                                                              : evolution.iterations.back().error_level}};
   }
   if (options.measure) {
-    QualityMetrics quality = timer.run("metrics", [&] { return measure_quality(result.mesh, cloud, cells, &graph); });
+    QualityMetrics quality = timer.run("metrics", [&] { return measure_quality(result.mesh, cloud, cells, &graph, &oriented); });
     report["metrics"] = to_json(quality);
     result.verdict = judge_mesh(quality, median_radius, initial.open_ends);
     report["verdict"] = to_json(*result.verdict);
   }
-  if (!options.surfaces.cad_path.empty() || !options.surfaces.control_nets_path.empty())
-    report["surfaces"] = timer.run("surfaces", [&] { return export_surfaces(result.mesh, &cloud, options.surfaces); });
+  if (!options.surfaces.cad_path.empty() || !options.surfaces.control_nets_path.empty()) {
+    VerdictCheck off_cloud;
+    report["surfaces"] = timer.run("surfaces", [&] {
+      return export_surfaces(result.mesh, &cloud, options.surfaces, result.verdict ? &off_cloud : nullptr);
+    });
+    if (result.verdict && !off_cloud.name.empty()) {
+      add_check(*result.verdict, std::move(off_cloud));
+      report["verdict"] = to_json(*result.verdict);
+    }
+  }
   report["timings_seconds"] = timer.seconds;
   report["peak_resident_megabytes_after_stage"] = timer.peak_megabytes;
   report["resident_megabytes_after_stage"] = timer.resident_megabytes;
@@ -250,7 +262,7 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
   FitInput input;
   input.points_name = points_path;
   input.skeleton_name = skeleton_path;
-  input.cloud = timer.run("read_points", [&] { return read_point_cloud(points_path); });
+  input.cloud = timer.run("read_points", [&] { return read_point_cloud(points_path, true); });
   input.skeleton = timer.run("read_skeleton", [&] { return read_skeleton(skeleton_path); });
   return fit_loaded(std::move(input), options, timer);
 }

@@ -1,7 +1,5 @@
 #include "pipeline/measure.h"
 
-#include <memory>
-
 #include "cells/cell_tree.h"
 #include "metrics/mesh_metrics.h"
 #include "pipeline/prepare.h"
@@ -9,12 +7,24 @@
 
 namespace mcquad {
 
-nlohmann::json measure_mesh(const QuadMesh& mesh, const PointCloud& cloud, const SkeletonData* skeleton,
-                            const std::string& skeleton_name, size_t leaf_size) {
-  CellTree cells = build_cell_tree(cloud, cell_leaf_size(leaf_size, cloud.size()));
-  std::unique_ptr<SkeletonGraph> graph;
-  if (skeleton) graph = std::make_unique<SkeletonGraph>(build_skeleton_graph(*skeleton, skeleton_name));
-  return to_json(measure_quality(mesh, cloud, cells, graph.get()));
+MeshMeasurement measure_mesh(const QuadMesh& mesh, const PointCloud& cloud, const SkeletonData* skeleton,
+                             const std::string& skeleton_name, size_t leaf_size) {
+  OrientedSample oriented = oriented_sample(cloud);
+  MeshMeasurement result;
+  QualityMetrics quality;
+  if (skeleton) {
+    SkeletonGraph graph = build_skeleton_graph(*skeleton, skeleton_name);
+    EvolutionSetup setup = prepare_evolution(graph, cloud, InitialMeshOptions(), leaf_size, skeleton_name);
+    quality = measure_quality(mesh, cloud, setup.cells, &graph, &oriented);
+    result.verdict = judge_mesh(quality, setup.median_radius, setup.initial.open_ends);
+  } else {
+    CellTree cells = build_cell_tree(cloud, cell_leaf_size(leaf_size, cloud.size()));
+    quality = measure_quality(mesh, cloud, cells, nullptr, &oriented);
+    result.verdict = judge_mesh(quality, 0.0);
+  }
+  result.metrics = to_json(quality);
+  result.metrics["verdict"] = to_json(result.verdict);
+  return result;
 }
 
 }  // namespace mcquad

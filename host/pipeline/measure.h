@@ -6,14 +6,23 @@
 #include "core/point_cloud.h"
 #include "core/quad_mesh.h"
 #include "io/skeleton_io.h"
+#include "metrics/verdict.h"
 
 namespace mcquad {
 
+struct MeshMeasurement {
+  nlohmann::json metrics;  //!< the report's "metrics" section, with "verdict" added
+  Verdict verdict;
+};
+
 //! `mcquad metrics` and the Python package's metrics(): a mesh measured
-//! against its cloud (and skeleton, when given, for the faces turned into
-//! the tube), with the cells built as fit builds them (`leaf_size` 0:
-//! automatic). Returns the report's "metrics" section.
-nlohmann::json measure_mesh(const QuadMesh& mesh, const PointCloud& cloud, const SkeletonData* skeleton,
-                            const std::string& skeleton_name, size_t leaf_size);
+//! against its cloud with the cells built as fit builds them (`leaf_size` 0:
+//! automatic), and judged as fit judges it. Inward faces are told by the
+//! cloud's normals when it has them, else by the skeleton. With a skeleton,
+//! the default construction on it gives the radius that scales the
+//! distance checks and the open ends the mesh must have; without one those
+//! checks are left out (nothing says what is near).
+MeshMeasurement measure_mesh(const QuadMesh& mesh, const PointCloud& cloud, const SkeletonData* skeleton,
+                             const std::string& skeleton_name, size_t leaf_size);
 
 }  // namespace mcquad

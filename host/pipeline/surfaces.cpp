@@ -28,7 +28,8 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-nlohmann::json export_surfaces(const QuadMesh& mesh, const PointCloud* cloud, const SurfaceOutputs& outputs) {
+nlohmann::json export_surfaces(const QuadMesh& mesh, const PointCloud* cloud, const SurfaceOutputs& outputs,
+                               VerdictCheck* off_cloud_check) {
   check_cad_unit(outputs.units);
   auto start = std::chrono::steady_clock::now();
   SurfaceModel model = build_surface_model(mesh);
@@ -60,7 +61,15 @@ nlohmann::json export_surfaces(const QuadMesh& mesh, const PointCloud* cloud, co
   if (!outputs.control_nets_path.empty()) write_mesh(outputs.control_nets_path, control_net_mesh(model.surfaces));
 
   start = std::chrono::steady_clock::now();
-  report["checks"] = to_json(check_surfaces(mesh, layout, model.surfaces, cloud, outputs.tangent_tolerance_degrees));
+  SurfaceChecks checks = check_surfaces(mesh, layout, model.surfaces, cloud, outputs.tangent_tolerance_degrees);
+  report["checks"] = to_json(checks);
+  if (off_cloud_check && cloud && !cloud->empty()) {
+    *off_cloud_check = make_check("surfaces_off_cloud",
+                                  "faces whose B-spline surface is farther from the cloud than the quad mesh (more than "
+                                  "1.1 x the mesh's 95th percentile or the face's own distance, plus one point spacing)",
+                                  double(checks.faces_off_cloud), VerdictCheck::Bound::kAtMost, 0);
+    for (const OffCloudSurfaceSite& site : checks.off_cloud_sites) off_cloud_check->sites.push_back(site.position);
+  }
   report["checks_seconds"] = seconds_since(start);
   return report;
 }

@@ -5,6 +5,7 @@
 
 #include "core/point_cloud.h"
 #include "core/quad_mesh.h"
+#include "metrics/verdict.h"
 
 namespace mcquad {
 
@@ -19,6 +20,9 @@ struct SurfaceOutputs {
 //! bicubic B-spline surface each, sewn and written through OpenCASCADE, then
 //! read back and measured (against the cloud when given). Returns the
 //! report's "surfaces" section.
-nlohmann::json export_surfaces(const QuadMesh& mesh, const PointCloud* cloud, const SurfaceOutputs& outputs);
+//! With a cloud and `off_cloud_check`, that check is set to the surfaces'
+//! verdict check: no face's surface farther from the cloud than the quad mesh.
+nlohmann::json export_surfaces(const QuadMesh& mesh, const PointCloud* cloud, const SurfaceOutputs& outputs,
+                               VerdictCheck* off_cloud_check = nullptr);
 
 }  // namespace mcquad

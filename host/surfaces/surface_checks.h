@@ -21,6 +21,16 @@ struct NormalGapSite {
   double mesh_crease_degrees = 0;  //!< the quad mesh's own largest dihedral angle at the vertex
 };
 
+//! A face whose surface is farther from the cloud than the quad mesh is:
+//! where a B-spline bulges away (near irregular vertices, typically).
+struct OffCloudSurfaceSite {
+  int face = -1;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  //!< the face's sample farthest from the cloud
+  double surface_distance = 0;  //!< that sample's distance to the nearest cloud point
+  double allowed_distance = 0;  //!< the tolerance at this face
+  int edges_from_irregular = -1;
+};
+
 //! How well the B-spline surfaces stand for the mesh and the cloud, and how
 //! they meet each other. Sampled on every face's span (3 x 3 points) and on
 //! every seam edge (5 points, evaluated from both sides).
@@ -29,6 +39,16 @@ struct SurfaceChecks {
   DistanceSummary to_cloud;        //!< samples to their nearest cloud point (no cloud: zeros)
   DistanceSummary mesh_to_cloud;   //!< the quad mesh's own (face samples), for comparison
   DistanceSummary to_mesh;         //!< samples to the quad mesh
+  //! Every face's surface must stay as near the cloud as the quad mesh: its
+  //! farthest sample within 1.1 x the larger of the mesh's own p95 distance
+  //! and the face's own farthest flat sample, plus the cloud's point spacing
+  //! (the slack). The faces that do not, worst first (at most
+  //! kMaxOffCloudSites kept; `faces_off_cloud` counts them all).
+  double off_cloud_tolerance = 0;
+  double off_cloud_slack = 0;
+  size_t faces_off_cloud = 0;
+  std::vector<OffCloudSurfaceSite> off_cloud_sites;
+  static constexpr size_t kMaxOffCloudSites = 20;
   size_t seam_edges = 0;
   double max_position_gap = 0;     //!< across all seams
   double tangent_tolerance_degrees = 0;

@@ -103,9 +103,14 @@ def _path(path: PathLike) -> str:
     return os.fspath(path)
 
 
-def read_points(path: PathLike) -> np.ndarray:
-    """Reads a point cloud (.ply, .xyz, .txt, .csv, .obj, .off) as an (N, 3) float32 array."""
-    return _core.read_points(_path(path))[0]
+def read_points(path: PathLike, normals: bool = False):
+    """Reads a point cloud (.ply, .xyz, .txt, .csv, .obj, .off) as an (N, 3) float32 array.
+
+    With ``normals=True``, returns ``(points, normals)``: the file's normals as
+    an (N, 3) float32 array, or None when it has none.
+    """
+    points, point_normals = _core.read_points(_path(path))
+    return (points, point_normals) if normals else points
 
 
 def read_skeleton(path: PathLike) -> Skeleton:
@@ -127,10 +132,12 @@ def write_mesh(path: PathLike, vertices: ArrayLike, faces: ArrayLike) -> None:
 SkeletonLike = Union[PathLike, Skeleton, Tuple[ArrayLike, ArrayLike], Dict[str, ArrayLike]]
 
 
-def _points(points: Union[PathLike, ArrayLike]) -> Tuple[np.ndarray, str]:
+def _points(points: Union[PathLike, ArrayLike], normals: Optional[ArrayLike]) -> Tuple[np.ndarray, Any, str]:
+    """The cloud, its normals (given, else the file's, else None) and its name."""
     if isinstance(points, (str, os.PathLike)):
-        return read_points(points), _path(points)
-    return np.asarray(points), "points array"
+        cloud, file_normals = read_points(points, normals=True)
+        return cloud, file_normals if normals is None else np.asarray(normals), _path(points)
+    return np.asarray(points), None if normals is None else np.asarray(normals), "points array"
 
 
 def _skeleton(skeleton: Optional[SkeletonLike]) -> Tuple[np.ndarray, np.ndarray, str]:
@@ -151,6 +158,7 @@ def fit(
     points: Union[PathLike, ArrayLike],
     skeleton: Optional[SkeletonLike] = None,
     *,
+    normals: Optional[ArrayLike] = None,
     ends: str = "auto",
     start_fraction: float = 0.7,
     resolution: float = 0.0,
@@ -190,6 +198,9 @@ def fit(
             store points) or the path of a point cloud file.
         skeleton: a skeleton file's path, a :class:`Skeleton`, a tuple
             ``(nodes, edges)`` or a dict with those keys (0-based edges).
+        normals: the scan's outward normals, (N, 3), for the verdict's inward
+            check (default: the file's, when ``points`` is a path that has them;
+            without normals the skeleton tells inward).
         ends: ``auto`` (decided from the cloud), ``open`` or ``capped``.
         start_fraction: initial mesh radius as a fraction of the local cloud radius (0.05 to 0.95).
         resolution: target edge length of the refined mesh (0: 16 vertices around a tube).
@@ -231,16 +242,17 @@ def fit(
         InputError, UnsupportedError, DeviceError, OutputError.
     """
     options = {name: value for name, value in locals().items() if name in _FIT_OPTIONS}
-    return _fit(points, skeleton, options, progress)
+    return _fit(points, normals, skeleton, options, progress)
 
 
 _FIT_OPTIONS = frozenset(_core.fit_defaults())
 
 
-def _fit(points, skeleton, options: Dict[str, Any], progress: Optional[ProgressCallback]) -> FitResult:
-    cloud, points_name = _points(points)
+def _fit(points, normals, skeleton, options: Dict[str, Any], progress: Optional[ProgressCallback]) -> FitResult:
+    cloud, cloud_normals, points_name = _points(points, normals)
     nodes, edges, skeleton_name = _skeleton(skeleton)
-    vertices, faces, report = _core.fit(cloud, nodes, edges, options, points_name, skeleton_name, progress)
+    vertices, faces, report = _core.fit(cloud, cloud_normals, nodes, edges, options, points_name, skeleton_name,
+                                        progress)
     return FitResult(vertices, faces, report)
 
 
@@ -250,17 +262,19 @@ def metrics(
     points: Union[PathLike, ArrayLike],
     skeleton: Optional[SkeletonLike] = None,
     *,
+    normals: Optional[ArrayLike] = None,
     leaf_size: int = 0,
 ) -> Dict[str, Any]:
-    """Distances both ways, error level, topology and defects of a mesh, as ``mcquad metrics``.
+    """Distances both ways, error level, topology, defects and verdict of a mesh, as ``mcquad metrics``.
 
-    With a skeleton, also the faces turned into the tube. Returns the same dict as ``mcquad metrics --json``.
+    Inward faces are told by the cloud's normals (``normals``, else the file's), else by the skeleton. With a
+    skeleton, the distance checks and open ends are judged too. Returns the same dict as ``mcquad metrics --json``.
     """
-    cloud, _ = _points(points)
+    cloud, cloud_normals, _ = _points(points, normals)
     nodes = edges = None
     if skeleton is not None:
         nodes, edges, _ = _skeleton(skeleton)
-    return _core.metrics(np.asarray(vertices), np.asarray(faces), cloud, nodes, edges, leaf_size)
+    return _core.metrics(np.asarray(vertices), np.asarray(faces), cloud, cloud_normals, nodes, edges, leaf_size)
 
 
 def surfaces(
@@ -278,7 +292,7 @@ def surfaces(
     With ``points``, the surfaces' distance to the cloud is measured too. ``units`` is the length unit
     the file declares (mm, cm, m, um, in, ft); the coordinates are written as they are. Returns the surface report.
     """
-    cloud = None if points is None else _points(points)[0]
+    cloud = None if points is None else _points(points, None)[0]
     return _core.surfaces(np.asarray(vertices), np.asarray(faces), _path(output), cloud, control_nets,
                           float(tangent_tolerance), units)
 

@@ -30,11 +30,18 @@ py::array_t<T> make_array(size_t rows, size_t columns) {
 
 }  // namespace
 
-PointCloud cloud_from_array(const FloatArray& points, const std::string& name) {
+PointCloud cloud_from_array(const FloatArray& points, const std::string& name, const py::object& normals) {
   size_t n = rows_of(points, 3, name, "points");
   PointCloud cloud;
   cloud.points.resize(n);
   std::copy_n(points.data(), 3 * n, reinterpret_cast<float*>(cloud.points.data()));
+  if (!normals.is_none()) {
+    FloatArray given = normals.cast<FloatArray>();
+    if (rows_of(given, 3, name, "normals") != n)
+      throw InputError(name + ": " + std::to_string(given.shape(0)) + " normals for " + std::to_string(n) + " points");
+    cloud.normals.resize(n);
+    std::copy_n(given.data(), 3 * n, reinterpret_cast<float*>(cloud.normals.data()));
+  }
   check_point_cloud(cloud, name);
   return cloud;
 }

@@ -19,7 +19,10 @@ using FloatArray = pybind11::array_t<float, pybind11::array::c_style | pybind11:
 using DoubleArray = pybind11::array_t<double, pybind11::array::c_style | pybind11::array::forcecast>;
 using IndexArray = pybind11::array_t<int64_t, pybind11::array::c_style | pybind11::array::forcecast>;
 
-PointCloud cloud_from_array(const FloatArray& points, const std::string& name);
+//! A cloud from an (N, 3) array, with an optional (N, 3) array of normals
+//! (None: none).
+PointCloud cloud_from_array(const FloatArray& points, const std::string& name,
+                            const pybind11::object& normals = pybind11::none());
 //! Nodes (M, 3) and bones (E, 2) of 0-based node indices.
 SkeletonData skeleton_from_arrays(const DoubleArray& nodes, const IndexArray& edges, const std::string& name);
 //! Vertices (V, 3) and faces (F, k) of 0-based vertex indices; -1 pads faces of fewer than k corners.

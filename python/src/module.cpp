@@ -49,12 +49,13 @@ class ScopedProgress {
 
 py::object parse_json(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
 
-py::tuple fit_arrays(FloatArray points, DoubleArray nodes, IndexArray edges, const py::dict& options,
-                     const std::string& points_name, const std::string& skeleton_name, const py::object& progress) {
+py::tuple fit_arrays(FloatArray points, const py::object& normals, DoubleArray nodes, IndexArray edges,
+                     const py::dict& options, const std::string& points_name, const std::string& skeleton_name,
+                     const py::object& progress) {
   FitInput input;
   input.points_name = points_name;
   input.skeleton_name = skeleton_name;
-  input.cloud = cloud_from_array(points, points_name);
+  input.cloud = cloud_from_array(points, points_name, normals);
   input.skeleton = skeleton_from_arrays(nodes, edges, skeleton_name);
   FitOptions fit_options = fit_options_from_dict(options);
   FitResult result;
@@ -70,9 +71,15 @@ py::tuple read_points(const std::string& path) {
   PointCloud cloud;
   {
     py::gil_scoped_release release;
-    cloud = read_point_cloud(path);
+    cloud = read_point_cloud(path, true);
   }
-  return py::make_tuple(points_of(cloud));
+  py::object normals = py::none();
+  if (!cloud.normals.empty()) {
+    PointCloud as_points;
+    as_points.points = std::move(cloud.normals);
+    normals = points_of(as_points);
+  }
+  return py::make_tuple(points_of(cloud), normals);
 }
 
 py::tuple read_skeleton_arrays(const std::string& path) {
@@ -91,17 +98,17 @@ py::tuple read_mesh_arrays(const std::string& path) {
   return py::make_tuple(vertices_of(mesh), faces_of(mesh));
 }
 
-py::object metrics_json(DoubleArray vertices, IndexArray faces, FloatArray points, const py::object& nodes,
-                        const py::object& edges, size_t leaf_size) {
+py::object metrics_json(DoubleArray vertices, IndexArray faces, FloatArray points, const py::object& normals,
+                        const py::object& nodes, const py::object& edges, size_t leaf_size) {
   QuadMesh mesh = mesh_from_arrays(vertices, faces, "mesh");
-  PointCloud cloud = cloud_from_array(points, "points");
+  PointCloud cloud = cloud_from_array(points, "points", normals);
   std::unique_ptr<SkeletonData> skeleton;
   if (!nodes.is_none())
     skeleton = std::make_unique<SkeletonData>(skeleton_from_arrays(nodes.cast<DoubleArray>(), edges.cast<IndexArray>(), "skeleton"));
   nlohmann::json metrics;
   {
     py::gil_scoped_release release;
-    metrics = measure_mesh(mesh, cloud, skeleton.get(), "skeleton", leaf_size);
+    metrics = measure_mesh(mesh, cloud, skeleton.get(), "skeleton", leaf_size).metrics;
   }
   return parse_json(metrics.dump());
 }
@@ -189,7 +196,7 @@ PYBIND11_MODULE(_core, m) {
   m.doc() = "mcquad's compiled core; use the functions of the mcquad package.";
   m.attr("__version__") = MCQUAD_VERSION;
   register_exceptions(m);
-  m.def("fit", &fit_arrays, py::arg("points"), py::arg("nodes"), py::arg("edges"), py::arg("options"),
+  m.def("fit", &fit_arrays, py::arg("points"), py::arg("normals"), py::arg("nodes"), py::arg("edges"), py::arg("options"),
         py::arg("points_name"), py::arg("skeleton_name"), py::arg("progress") = py::none());
   m.def("fit_defaults", &fit_defaults, "The fit options' defaults, as the CLI shows them.");
   m.def("shape_defaults", &shape_defaults, "The generator options' defaults.");
@@ -199,7 +206,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("write_mesh", &write_mesh_arrays, py::arg("path"), py::arg("vertices"), py::arg("faces"));
   m.def("generate", &generate, py::arg("name"), py::arg("directory"), py::arg("options"));
   m.def("shape_names", &shape_names);
-  m.def("metrics", &metrics_json, py::arg("vertices"), py::arg("faces"), py::arg("points"), py::arg("nodes"),
+  m.def("metrics", &metrics_json, py::arg("vertices"), py::arg("faces"), py::arg("points"), py::arg("normals"), py::arg("nodes"),
         py::arg("edges"), py::arg("leaf_size"));
   m.def("surfaces", &surfaces_json, py::arg("vertices"), py::arg("faces"), py::arg("cad_path"), py::arg("points"),
         py::arg("control_nets"), py::arg("tangent_tolerance"), py::arg("units"));

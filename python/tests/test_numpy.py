@@ -42,14 +42,20 @@ def test_fit_from_arrays_gives_the_cli_mesh_byte_for_byte(t_shape, tmp_path, cli
     cli_mesh, cli_report = tmp_path / "cli.obj", tmp_path / "cli.json"
     subprocess.run([cli, "fit", str(t_shape / "t-shape.ply"), str(t_shape / "t-shape.skeleton.obj"), "-o", str(cli_mesh),
                     "--seed", "7", "--backend", "serial", "--report", str(cli_report)], check=True, capture_output=True)
-    points = mcquad.read_points(t_shape / "t-shape.ply")
+    points, normals = mcquad.read_points(t_shape / "t-shape.ply", normals=True)
     skeleton = mcquad.read_skeleton(t_shape / "t-shape.skeleton.obj")
-    result = mcquad.fit(points.astype(np.float64), (skeleton.nodes, skeleton.edges), seed=7, backend="serial")
+    result = mcquad.fit(points.astype(np.float64), (skeleton.nodes, skeleton.edges), normals=normals, seed=7,
+                        backend="serial")
     result.write(tmp_path / "python.obj")
     assert (tmp_path / "python.obj").read_bytes() == cli_mesh.read_bytes()
     report = json.loads(cli_report.read_text())
+    assert result.report["metrics"]["inward_measured_against"] == "scan normals"
     assert result.report["metrics"] == report["metrics"]
     assert result.report["verdict"] == report["verdict"]
+    # Without normals the skeleton tells inward; the mesh is the same.
+    by_skeleton = mcquad.fit(points, (skeleton.nodes, skeleton.edges), seed=7, backend="serial")
+    assert by_skeleton.report["metrics"]["inward_measured_against"] == "skeleton"
+    np.testing.assert_array_equal(by_skeleton.vertices, result.vertices)
     assert result.report["parameters"] == report["parameters"]
 
 
@@ -84,6 +90,7 @@ def test_signature_defaults_are_the_librarys(cli):
     parameters = inspect.signature(mcquad.fit).parameters
     options = {name: p.default for name, p in parameters.items() if p.kind is inspect.Parameter.KEYWORD_ONLY}
     options.pop("progress")
+    options.pop("normals")  # an input beside the points, not an option
     assert options == defaults
     help_text = subprocess.run([cli, "fit", "--help"], check=True, capture_output=True, text=True).stdout
     for name in ("iterations", "cones", "samples", "hit_band", "start_fraction", "alpha_max"):
@@ -118,7 +125,9 @@ def test_bad_skeleton_and_options_raise_input_error(t_shape):
     with pytest.raises(mcquad.InputError, match=r"cones: 0\.0+ is outside \[1"):
         mcquad.fit(points, skeleton, cones=0)
     with pytest.raises(mcquad.InputError, match="unknown option 'colour'"):
-        _core.fit(points, np.zeros((2, 3)), np.array([[0, 1]]), {"colour": 1}, "p", "s")
+        _core.fit(points, None, np.zeros((2, 3)), np.array([[0, 1]]), {"colour": 1}, "p", "s")
+    with pytest.raises(mcquad.InputError, match="3 normals for 20000 points"):
+        mcquad.fit(points, skeleton, normals=np.zeros((3, 3)))
 
 
 def test_files_that_are_not_there_or_broken_name_the_file(tmp_path):
