@@ -127,5 +127,52 @@ TEST(BoneAssignment, RejectsSkeletonsThatDoNotMatchTheCloud) {
   EXPECT_THROW(assign_points_to_bones(other, shape.cloud, "other.obj"), InputError);
 }
 
+//! Points on a sphere of radius `radius` round the origin (a golden spiral).
+PointCloud sphere_cloud(double radius, int count) {
+  PointCloud cloud;
+  for (int i = 0; i < count; ++i) {
+    double z = 1 - 2 * (i + 0.5) / count, ring = std::sqrt(1 - z * z), angle = i * M_PI * (3 - std::sqrt(5.0));
+    cloud.points.emplace_back(float(radius * ring * std::cos(angle)), float(radius * ring * std::sin(angle)), float(radius * z));
+  }
+  return cloud;
+}
+
+// A real skeleton (MCF) of a thick body: a short bone at the centre of a fat
+// blob, with bones out to every side. Every surface point is nearer to one of
+// the outer bones, so no point picks the central one; its radius is the
+// body's around it, and a skeleton whose bone lies far off is still refused.
+TEST(BoneAssignment, ABoneInsideAThickBodyGetsItsRadiusFromTheCloudAroundIt) {
+  PointCloud body = sphere_cloud(3.0, 4000);
+  std::vector<Eigen::Vector3d> nodes{{-0.2, 0, 0}, {0.2, 0, 0}};
+  std::vector<std::array<int, 2>> bones{{0, 1}};
+  for (const Eigen::Vector3d& out : {Eigen::Vector3d(-2.5, 0, 0), Eigen::Vector3d(0, 2.5, 0), Eigen::Vector3d(0, 0, 2.5)}) {
+    nodes.push_back(out);
+    bones.push_back({0, int(nodes.size()) - 1});
+  }
+  for (const Eigen::Vector3d& out : {Eigen::Vector3d(2.5, 0, 0), Eigen::Vector3d(0, -2.5, 0), Eigen::Vector3d(0, 0, -2.5)}) {
+    nodes.push_back(out);
+    bones.push_back({1, int(nodes.size()) - 1});
+  }
+  SkeletonGraph graph = build_skeleton_graph(skeleton_of(nodes, bones), "blob.obj");
+  BoneAssignment assigned = assign_points_to_bones(graph, body, "blob.obj");
+  size_t central = 0;
+  for (size_t b = 0; b < graph.edges.size(); ++b)
+    if ((graph.positions[graph.edges[b][0]] - graph.positions[graph.edges[b][1]]).norm() < 0.5) central = b;
+  for (int bone : assigned.bone) ASSERT_NE(size_t(bone), central) << "the stand-in needs a bone no point picks";
+  EXPECT_NEAR(assigned.bone_radius[central], 3.0, 0.1);
+
+  // The central bone moved far out of the body (its outer bones still
+  // reaching in): refused, the bone named.
+  nodes[0] = {20, 0, 0};
+  nodes[1] = {20.4, 0, 0};
+  SkeletonGraph off = build_skeleton_graph(skeleton_of(nodes, bones), "off.obj");
+  try {
+    assign_points_to_bones(off, body, "off.obj");
+    ADD_FAILURE() << "a bone far outside the cloud was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("off.obj: bone between nodes at (20, 0, 0)"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace mcquad

@@ -12,11 +12,52 @@
 namespace mcquad {
 namespace {
 
+//! "(x, y, z)" for messages.
+std::string point_text(const Eigen::Vector3d& p) {
+  std::ostringstream s;
+  s << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+  return s.str();
+}
+
 double median(std::vector<float>& values) {
   if (values.empty()) return 0.0;
   auto middle = values.begin() + values.size() / 2;
   std::nth_element(values.begin(), middle, values.end());
   return *middle;
+}
+
+//! Bones inside a thick body (a torso, a palm) may be nearer to no cloud
+//! point than other bones are, so no point picks them. Their radius is the
+//! cloud's distance from them instead: the median over samples along the
+//! bone of the distance to the nearest point, the radius of the largest
+//! tube inside the body around the bone. A bone that far from the cloud
+//! compared with every bone that has points lies outside it: InputError.
+void radii_of_bones_without_points(const SkeletonGraph& graph, const std::vector<size_t>& point_count,
+                                   const PointIndex<float>& cloud_index, const std::string& source,
+                                   std::vector<double>& bone_radius) {
+  double largest_with_points = 0;
+  for (size_t b = 0; b < bone_radius.size(); ++b)
+    if (point_count[b] > 0) largest_with_points = std::max(largest_with_points, bone_radius[b]);
+  constexpr int kSamples = 9;
+  for (size_t b = 0; b < bone_radius.size(); ++b) {
+    if (point_count[b] > 0) continue;
+    const Eigen::Vector3d& a = graph.positions[graph.edges[b][0]];
+    const Eigen::Vector3d& c = graph.positions[graph.edges[b][1]];
+    std::vector<float> gaps;
+    for (int k = 1; k <= kSamples; ++k) {
+      Eigen::Vector3d p = a + (c - a) * (double(k) / (kSamples + 1));
+      gaps.push_back(std::sqrt(cloud_index.nearest(p.cast<float>()).second));
+    }
+    bone_radius[b] = median(gaps);
+    if (bone_radius[b] > 2.0 * largest_with_points) {
+      std::ostringstream s;
+      s << source << ": bone between nodes at " << point_text(a) << " and " << point_text(c)
+        << " has no cloud points near it and lies " << bone_radius[b]
+        << " from the cloud, more than twice the largest radius of the other bones (" << largest_with_points
+        << "): the skeleton does not match the cloud";
+      throw InputError(s.str());
+    }
+  }
 }
 
 }  // namespace
@@ -58,15 +99,7 @@ BoneAssignment assign_points_to_bones(const SkeletonGraph& graph, const PointClo
     interior_count[size_t(result.bone[i])] += interior(i);
   }
   std::vector<std::vector<float>> distances(bone_count);
-  for (size_t b = 0; b < bone_count; ++b) {
-    if (all_count[b] == 0) {
-      std::ostringstream s;
-      s << source << ": bone between nodes at (" << graph.positions[graph.edges[b][0]].transpose() << ") and ("
-        << graph.positions[graph.edges[b][1]].transpose() << ") has no cloud points near it: the skeleton does not match the cloud";
-      throw InputError(s.str());
-    }
-    distances[b].reserve(interior_count[b] >= 8 ? interior_count[b] : all_count[b]);
-  }
+  for (size_t b = 0; b < bone_count; ++b) distances[b].reserve(interior_count[b] >= 8 ? interior_count[b] : all_count[b]);
   for (size_t i = 0; i < n; ++i) {
     size_t b = size_t(result.bone[i]);
     if (interior_count[b] < 8 || interior(i)) distances[b].push_back(result.distance[i]);
@@ -74,6 +107,10 @@ BoneAssignment assign_points_to_bones(const SkeletonGraph& graph, const PointClo
   result.bone_radius.resize(bone_count);
   for (size_t b = 0; b < bone_count; ++b) result.bone_radius[b] = median(distances[b]);
   std::vector<std::vector<float>>().swap(distances);
+
+  std::unique_ptr<PointIndex<float>> own_index;
+  if (!cloud_index) cloud_index = (own_index = std::make_unique<PointIndex<float>>(cloud.points)).get();
+  radii_of_bones_without_points(graph, all_count, *cloud_index, source, result.bone_radius);
 
   result.node_radius = node_radii(graph, result.bone_radius);
 
@@ -86,13 +123,11 @@ BoneAssignment assign_points_to_bones(const SkeletonGraph& graph, const PointClo
                        " from its bones on average, half its own size: the skeleton does not match the cloud");
   }
   // A node far from every cloud point lies outside the cloud.
-  std::unique_ptr<PointIndex<float>> own_index;
-  if (!cloud_index) cloud_index = (own_index = std::make_unique<PointIndex<float>>(cloud.points)).get();
   for (size_t v = 0; v < graph.node_count(); ++v) {
     double gap = std::sqrt(double(cloud_index->nearest(graph.positions[v].cast<float>()).second));
     if (gap > 3.0 * result.node_radius[v] + 1e-12) {
       std::ostringstream s;
-      s << source << ": skeleton node " << v + 1 << " at (" << graph.positions[v].transpose() << ") is " << gap
+      s << source << ": skeleton node " << v + 1 << " at " << point_text(graph.positions[v]) << " is " << gap
         << " from the nearest cloud point, far outside the cloud (local radius " << result.node_radius[v] << ")";
       throw InputError(s.str());
     }

@@ -31,9 +31,11 @@ struct BoneAssignment {
 //! distance of its points that project inside it (points past its ends belong
 //! to caps and junction blobs); medians keep noise and outliers from moving
 //! it. A node's radius is the mean of its bones' radii, the smallest of them
-//! at a junction. Throws InputError (prefixed by `source`) when the skeleton
-//! does not match the cloud: a bone with no points, a node far outside the
-//! cloud, or most points far from every bone.
+//! at a junction. A bone no point is nearest to (inside a thick body, where
+//! other bones are nearer to the surface everywhere) takes the cloud's
+//! distance from it. Throws InputError (prefixed by `source`) when the
+//! skeleton does not match the cloud: a bone without points far outside the
+//! cloud, a node far outside it, or most points far from every bone.
 //! `cloud_index` (over cloud.points) is built here when not given.
 BoneAssignment assign_points_to_bones(const SkeletonGraph& graph, const PointCloud& cloud, const std::string& source,
                                       const PointIndex<float>* cloud_index = nullptr);
