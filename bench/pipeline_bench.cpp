@@ -8,7 +8,7 @@
 #include <memory>
 
 #include "cells/cell_tree.h"
-#include "evolution/crossing_guard.h"
+#include "mesh/crossing_guard.h"
 #include "evolution/evolve.h"
 #include "evolution/serial_backend.h"
 #include "generate/shapes.h"

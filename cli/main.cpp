@@ -7,6 +7,7 @@
 #include "core/errors.h"
 #include "core/progress.h"
 #include "generate/shapes.h"
+#include "generate/true_surface_distance.h"
 #include "io/file_utils.h"
 #include "io/mesh_io.h"
 #include "io/point_cloud_io.h"

@@ -3,7 +3,7 @@
 #include <random>
 
 #include "cells/cell_tree.h"
-#include "evolution/shared_math.h"
+#include "core/shared_math.h"
 
 namespace mcquad {
 namespace {

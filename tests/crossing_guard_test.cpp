@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "evolution/crossing_guard.h"
+#include "mesh/crossing_guard.h"
 #include "mesh/mesh_arrays.h"
 
 namespace mcquad {

@@ -8,7 +8,7 @@
 #include "helpers.h"
 #include "mesh/initial_mesh.h"
 #include "mesh/mesh_arrays.h"
-#include "metrics/face_intersections.h"
+#include "mesh/face_intersections.h"
 #include "metrics/mesh_metrics.h"
 #include "metrics/surface_distance.h"
 #include "pipeline/fit.h"

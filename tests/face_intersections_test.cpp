@@ -3,7 +3,7 @@
 #include <random>
 
 #include "cells/cell_tree.h"
-#include "metrics/face_intersections.h"
+#include "mesh/face_intersections.h"
 #include "metrics/mesh_metrics.h"
 
 namespace mcquad {

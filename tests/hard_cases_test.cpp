@@ -6,7 +6,8 @@
 #include <algorithm>
 
 #include "evolution_fixture.h"
-#include "metrics/face_intersections.h"
+#include "generate/true_surface_distance.h"
+#include "mesh/face_intersections.h"
 #include "metrics/mesh_metrics.h"
 
 namespace mcquad {

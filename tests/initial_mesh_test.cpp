@@ -4,7 +4,7 @@
 #include "helpers.h"
 #include "mesh/initial_mesh.h"
 #include "mesh/junction_layout.h"
-#include "metrics/face_intersections.h"
+#include "mesh/face_intersections.h"
 #include "metrics/mesh_metrics.h"
 #include "skeleton/bone_assignment.h"
 

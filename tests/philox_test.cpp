@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "evolution/shared_math.h"
+#include "core/shared_math.h"
 
 namespace mcquad {
 namespace {

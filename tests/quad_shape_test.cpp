@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "metrics/quad_shape.h"
+#include "mesh/quad_shape.h"
 
 namespace mcquad {
 namespace {

@@ -7,7 +7,7 @@
 
 #include "core/errors.h"
 #include "core/point_index.h"
-#include "evolution/shared_math.h"
+#include "core/shared_math.h"
 
 namespace mcquad {
 namespace {

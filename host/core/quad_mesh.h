@@ -50,4 +50,15 @@ inline Eigen::Vector3d quad_vector_area(const std::vector<Eigen::Vector3d>& c) {
   return (c[2] - c[0]).cross(c[3] - c[1]);
 }
 
+//! Twice the vector area of any face (the sum of its corners' cross
+//! products): its normal, unnormalized. For a quad it equals
+//! quad_vector_area.
+inline Eigen::Vector3d face_vector_area(const QuadMesh& mesh, QuadMesh::FaceHandle f) {
+  std::vector<Eigen::Vector3d> c = face_corners(mesh, f);
+  if (c.size() == 4) return quad_vector_area(c);
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (size_t k = 0; k < c.size(); ++k) sum += c[k].cross(c[(k + 1) % c.size()]);
+  return sum;
+}
+
 }  // namespace mcquad

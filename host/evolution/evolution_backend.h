@@ -6,7 +6,7 @@
 
 #include "cells/cell_tree.h"
 #include "cells/skeleton_regions.h"
-#include "evolution/shared_math.h"
+#include "core/shared_math.h"
 #include "mesh/mesh_arrays.h"
 
 namespace mcquad {
@@ -44,10 +44,5 @@ class EvolutionBackend {
 };
 
 enum class BackendKind { kAuto, kSerial, kOpenCL };
-
-//! Creates a backend; for kAuto, OpenCL when a device is usable (else serial,
-//! saying so once on stderr). `device` selects an OpenCL device by index or
-//! name ("" = MCQUAD_DEVICE or the first GPU, else the first device).
-std::unique_ptr<EvolutionBackend> make_backend(BackendKind kind, const std::string& device);
 
 }  // namespace mcquad

@@ -29,7 +29,7 @@ struct EvolutionParameters {
   //! Robust mode: vertices in holes of the scan take their neighbours' offset.
   bool fill_holes = true;
   //! Robust mode: moves that make faces cross are undone after each step
-  //! (evolution/crossing_guard.h).
+  //! (mesh/crossing_guard.h).
   bool crossing_guard = true;
   //! Robust mode, with the guard: weight of the tangential relaxation of the
   //! vertices it held back, after each step (0 = none).

@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "core/progress.h"
-#include "evolution/crossing_guard.h"
+#include "mesh/crossing_guard.h"
 
 namespace mcquad {
 

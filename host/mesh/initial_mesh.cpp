@@ -7,17 +7,17 @@
 
 #include "core/errors.h"
 #include "core/point_index.h"
-#include "evolution/crossing_guard.h"
-#include "mesh/frames.h"
-#include "evolution/shared_math.h"
+#include "core/shared_math.h"
+#include "mesh/crossing_guard.h"
 #include "mesh/cube_block.h"
+#include "mesh/face_intersections.h"
+#include "mesh/folds.h"
+#include "mesh/frames.h"
 #include "mesh/junction_block.h"
 #include "mesh/mesh_arrays.h"
 #include "mesh/open_ends.h"
 #include "mesh/quad_soup.h"
 #include "mesh/refinement.h"
-#include "metrics/face_intersections.h"
-#include "metrics/mesh_metrics.h"
 #include "skeleton/acute_junctions.h"
 
 namespace mcquad {

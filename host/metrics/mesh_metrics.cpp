@@ -5,8 +5,8 @@
 #include <set>
 
 #include "core/point_index.h"
-#include "evolution/shared_math.h"
-#include "metrics/face_intersections.h"
+#include "core/shared_math.h"
+#include "mesh/face_intersections.h"
 #include "skeleton/bone_assignment.h"
 
 namespace mcquad {
@@ -87,8 +87,7 @@ std::vector<int> inward_face_indices(const QuadMesh& mesh, const SkeletonGraph& 
       centroid += corners.back();
     }
     centroid /= double(corners.size());
-    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-    for (size_t k = 0; k < corners.size(); ++k) normal += corners[k].cross(corners[(k + 1) % corners.size()]);
+    Eigen::Vector3d normal = face_vector_area(mesh, f);
     double closest = INFINITY;
     for (size_t b = 0; b < skeleton.edges.size(); ++b) {
       double t;
@@ -111,31 +110,6 @@ std::vector<int> inward_face_indices(const QuadMesh& mesh, const SkeletonGraph& 
     if (normal.dot(outward) < 0) inward.push_back(f.idx());
   }
   return inward;
-}
-
-namespace {
-
-
-Eigen::Vector3d face_normal(const QuadMesh& mesh, QuadMesh::FaceHandle f) {
-  std::vector<Eigen::Vector3d> corners = face_corners(mesh, f);
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-  for (size_t k = 0; k < corners.size(); ++k) normal += corners[k].cross(corners[(k + 1) % corners.size()]);
-  return normal.normalized();
-}
-
-}  // namespace
-
-bool is_folded(const QuadMesh& mesh, QuadMesh::EdgeHandle edge) {
-  if (mesh.is_boundary(edge)) return false;
-  auto f0 = mesh.face_handle(mesh.halfedge_handle(edge, 0));
-  auto f1 = mesh.face_handle(mesh.halfedge_handle(edge, 1));
-  return face_normal(mesh, f0).dot(face_normal(mesh, f1)) < -0.5;
-}
-
-size_t folded_edges(const QuadMesh& mesh) {
-  size_t folded = 0;
-  for (auto e : mesh.edges()) folded += is_folded(mesh, e);
-  return folded;
 }
 
 double winding_number(const QuadMesh& mesh, const Eigen::Vector3d& p) {
@@ -175,9 +149,7 @@ std::vector<int> faces_against_normals(const QuadMesh& mesh, const OrientedSampl
   std::vector<char> against(mesh.n_faces(), 0);
 #pragma omp parallel for schedule(static)
   for (long f = 0; f < long(mesh.n_faces()); ++f) {
-    std::vector<Eigen::Vector3d> corners = face_corners(mesh, mesh.face_handle(int(f)));
-    if (corners.size() < 3) continue;
-    Eigen::Vector3d normal = corners.size() == 4 ? quad_vector_area(corners) : (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+    Eigen::Vector3d normal = face_vector_area(mesh, mesh.face_handle(int(f)));
     long nearest = index.nearest(face_centroid(mesh, int(f)).cast<float>()).first;
     if (nearest >= 0) against[size_t(f)] = normal.dot(oriented.normals[size_t(nearest)].cast<double>()) < 0;
   }
@@ -188,10 +160,7 @@ std::vector<int> faces_against_normals(const QuadMesh& mesh, const OrientedSampl
 }
 
 double area_fraction(const QuadMesh& mesh, const std::vector<int>& faces) {
-  auto area = [&](QuadMesh::FaceHandle f) {
-    std::vector<Eigen::Vector3d> c = face_corners(mesh, f);
-    return c.size() == 4 ? 0.5 * quad_vector_area(c).norm() : c.size() == 3 ? 0.5 * (c[1] - c[0]).cross(c[2] - c[0]).norm() : 0.0;
-  };
+  auto area = [&](QuadMesh::FaceHandle f) { return 0.5 * face_vector_area(mesh, f).norm(); };
   double total = 0, part = 0;
   for (auto f : mesh.faces()) total += area(f);
   for (int f : faces) part += area(mesh.face_handle(f));
@@ -229,7 +198,7 @@ QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, co
     m.inward_faces = long(inward.size());
     m.inward_area_fraction = area_fraction(mesh, inward);
     std::vector<double> areas;
-    for (int f : inward) areas.push_back(quad_vector_area(face_corners(mesh, mesh.face_handle(f))).norm());
+    for (int f : inward) areas.push_back(face_vector_area(mesh, mesh.face_handle(f)).norm());
     for (size_t k : largest_first(areas, QualityMetrics::kMaxSites)) m.inward_sites.push_back(face_centroid(mesh, inward[k]));
   }
   std::vector<Eigen::Vector3d> loops = boundary_loop_centres(mesh);
@@ -254,31 +223,6 @@ QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, co
   for (size_t f : largest_first(badness, QualityMetrics::kMaxSites))
     if (badness[f] >= 0) m.worst_quad_sites.push_back(face_centroid(mesh, int(f)));
   return m;
-}
-
-TrueSurfaceDistance measure_true_surface_distance(const QuadMesh& mesh, const TubeSurface& surface) {
-  std::vector<double> absolute, relative;
-  for (auto v : mesh.vertices()) {
-    Eigen::Vector3d p = point_of(mesh, v);
-    int capsule = surface.nearest_capsule(p);
-    double d = std::abs(surface.signed_distance(p));
-    absolute.push_back(d);
-    relative.push_back(d / surface.capsules()[capsule].radius);
-  }
-  return {summarize_distances(absolute), summarize_distances(relative)};
-}
-
-DistanceSummary cloud_to_mesh_relative_to_local_radius(const QuadMesh& mesh, const PointCloud& cloud,
-                                                       const TubeSurface& surface) {
-  std::vector<double> relative = cloud_to_mesh_distances(mesh, cloud);
-#pragma omp parallel for schedule(static)
-  for (long i = 0; i < long(relative.size()); ++i)
-    relative[size_t(i)] /= surface.capsules()[surface.nearest_capsule(cloud.points[size_t(i)].cast<double>())].radius;
-  return summarize_distances(relative);
-}
-
-nlohmann::json to_json(const TrueSurfaceDistance& d) {
-  return {{"absolute", to_json(d.absolute)}, {"relative_to_radius", to_json(d.relative)}};
 }
 
 nlohmann::json to_json(const MeshStatistics& s) {

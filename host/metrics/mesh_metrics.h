@@ -7,8 +7,8 @@
 #include "cells/cell_tree.h"
 #include "core/point_cloud.h"
 #include "core/quad_mesh.h"
-#include "generate/tube_surface.h"
-#include "metrics/quad_shape.h"
+#include "mesh/folds.h"
+#include "mesh/quad_shape.h"
 #include "metrics/surface_distance.h"
 #include "skeleton/skeleton_graph.h"
 
@@ -81,30 +81,12 @@ size_t inward_faces(const QuadMesh& mesh, const SkeletonGraph& skeleton);
 //! The same faces, by index.
 std::vector<int> inward_face_indices(const QuadMesh& mesh, const SkeletonGraph& skeleton);
 
-//! Folds: edges whose two faces' normals differ by more than 120 degrees
-//! (a face flipped over its neighbour).
-size_t folded_edges(const QuadMesh& mesh);
-bool is_folded(const QuadMesh& mesh, QuadMesh::EdgeHandle edge);
 
 //! Generalized winding number of the mesh at p (quads split in two
 //! triangles): about 1 inside a closed, outward-oriented mesh, 0 outside,
 //! -1 inside one oriented inward.
 double winding_number(const QuadMesh& mesh, const Eigen::Vector3d& p);
 
-//! Distances of the mesh vertices to a generated shape's true surface, in
-//! model units and relative to the local tube radius (the nearest capsule's).
-struct TrueSurfaceDistance {
-  DistanceSummary absolute, relative;
-};
-TrueSurfaceDistance measure_true_surface_distance(const QuadMesh& mesh, const TubeSurface& surface);
-
-//! Distances of the cloud points to the mesh relative to their local tube
-//! radius (the nearest capsule's): issue 6's coverage, "95 % of the points
-//! within 5 % of the local radius", where radii differ along the shape.
-DistanceSummary cloud_to_mesh_relative_to_local_radius(const QuadMesh& mesh, const PointCloud& cloud,
-                                                       const TubeSurface& surface);
-
-nlohmann::json to_json(const TrueSurfaceDistance& distance);
 nlohmann::json to_json(const MeshStatistics& statistics);
 nlohmann::json to_json(const QualityMetrics& metrics);
 

@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "core/point_index.h"
-#include "evolution/shared_math.h"
-#include "metrics/face_intersections.h"
+#include "core/shared_math.h"
+#include "mesh/face_intersections.h"
 
 namespace mcquad {
 

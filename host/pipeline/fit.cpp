@@ -18,6 +18,7 @@
 #include "io/point_cloud_io.h"
 #include "io/skeleton_io.h"
 #include "mesh/mesh_arrays.h"
+#include "pipeline/make_backend.h"
 #include "pipeline/prepare.h"
 #include "pipeline/surfaces.h"
 #include "surfaces/cad_model.h"

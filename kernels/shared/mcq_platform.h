@@ -1,6 +1,6 @@
 /* Portability layer for the code shared by the C++ serial path and the OpenCL
  * kernels. Everything under kernels/shared/ compiles as OpenCL C 1.2 and as
- * C++17 (host/evolution/shared_math.h includes it inside a namespace), so the
+ * C++17 (host/core/shared_math.h includes it inside a namespace), so the
  * two backends run the same per-vertex arithmetic and cannot drift apart.
  * Only float arithmetic is used: the device works in float. */
 #ifndef MCQ_PLATFORM_H

@@ -1,3 +1,5 @@
+#include "pipeline/make_backend.h"
+
 #include "core/errors.h"
 #include "core/progress.h"
 #include "evolution/evolution_backend.h"

@@ -1,4 +1,4 @@
-#include "metrics/face_intersections.h"
+#include "mesh/face_intersections.h"
 
 #include <algorithm>
 

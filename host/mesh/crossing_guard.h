@@ -16,7 +16,7 @@ namespace mcquad {
 //! moving into it, a vertex pulled across a thin neck), and small turns add
 //! up over steps. After a step the guard looks for new defects, by the same
 //! tests `mcquad metrics` counts:
-//!   - face pairs that cross (metrics/face_intersections.h);
+//!   - face pairs that cross (mesh/face_intersections.h);
 //!   - edges whose two faces fold over each other (normals more than 120
 //!     degrees apart);
 //!   - faces turned more than 90 degrees from where they started (into the
@@ -41,7 +41,7 @@ class CrossingGuard {
   //! A defect: two faces (a < b), or one turned face (b = -1).
   using Defect = std::pair<int, int>;
   //! Quads whose worst corner falls below this scaled Jacobian count as
-  //! defects (metrics/quad_shape.h): a corner near 180 degrees or beyond.
+  //! defects (mesh/quad_shape.h): a corner near 180 degrees or beyond.
   static constexpr double kLeastScaledJacobian = 0.3;
   //! The defects of the mesh at `positions`, sorted; with `only_faces`,
   //! those involving at least one of those faces.

@@ -1,11 +1,12 @@
-#include "evolution/crossing_guard.h"
+#include "mesh/crossing_guard.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <numeric>
 
-#include "metrics/face_intersections.h"
-#include "metrics/quad_shape.h"
+#include "mesh/face_intersections.h"
+#include "mesh/folds.h"
+#include "mesh/quad_shape.h"
 
 namespace mcquad {
 namespace {
@@ -80,7 +81,7 @@ std::vector<CrossingGuard::Defect> CrossingGuard::defects(const std::vector<floa
     bad[i] = normal[i].dot(start) < 0 || scaled_jacobian(corners) < jacobian_floor_[i] - 1e-6;
   }
   for (const auto& [a, b] : adjacent_faces_)
-    if ((wanted(a) || wanted(b)) && normal[size_t(a)].dot(normal[size_t(b)]) < -0.5) found.emplace_back(a, b);
+    if ((wanted(a) || wanted(b)) && normals_fold(normal[size_t(a)], normal[size_t(b)])) found.emplace_back(a, b);
   for (long f = 0; f < faces; ++f)
     if (bad[size_t(f)]) found.emplace_back(int(f), -1);
   std::sort(found.begin(), found.end());

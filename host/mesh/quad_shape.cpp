@@ -1,4 +1,4 @@
-#include "metrics/quad_shape.h"
+#include "mesh/quad_shape.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>

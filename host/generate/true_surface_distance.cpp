@@ -1,0 +1,30 @@
+#include "generate/true_surface_distance.h"
+
+namespace mcquad {
+
+TrueSurfaceDistance measure_true_surface_distance(const QuadMesh& mesh, const TubeSurface& surface) {
+  std::vector<double> absolute, relative;
+  for (auto v : mesh.vertices()) {
+    Eigen::Vector3d p = point_of(mesh, v);
+    int capsule = surface.nearest_capsule(p);
+    double d = std::abs(surface.signed_distance(p));
+    absolute.push_back(d);
+    relative.push_back(d / surface.capsules()[capsule].radius);
+  }
+  return {summarize_distances(absolute), summarize_distances(relative)};
+}
+
+DistanceSummary cloud_to_mesh_relative_to_local_radius(const QuadMesh& mesh, const PointCloud& cloud,
+                                                       const TubeSurface& surface) {
+  std::vector<double> relative = cloud_to_mesh_distances(mesh, cloud);
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < long(relative.size()); ++i)
+    relative[size_t(i)] /= surface.capsules()[surface.nearest_capsule(cloud.points[size_t(i)].cast<double>())].radius;
+  return summarize_distances(relative);
+}
+
+nlohmann::json to_json(const TrueSurfaceDistance& d) {
+  return {{"absolute", to_json(d.absolute)}, {"relative_to_radius", to_json(d.relative)}};
+}
+
+}  // namespace mcquad

@@ -1,0 +1,27 @@
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "core/point_cloud.h"
+#include "core/quad_mesh.h"
+#include "generate/tube_surface.h"
+#include "metrics/surface_distance.h"
+
+namespace mcquad {
+
+//! Distances of the mesh vertices to a generated shape's true surface, in
+//! model units and relative to the local tube radius (the nearest capsule's).
+struct TrueSurfaceDistance {
+  DistanceSummary absolute, relative;
+};
+TrueSurfaceDistance measure_true_surface_distance(const QuadMesh& mesh, const TubeSurface& surface);
+
+//! Distances of the cloud points to the mesh relative to their local tube
+//! radius (the nearest capsule's): issue 6's coverage, "95 % of the points
+//! within 5 % of the local radius", where radii differ along the shape.
+DistanceSummary cloud_to_mesh_relative_to_local_radius(const QuadMesh& mesh, const PointCloud& cloud,
+                                                       const TubeSurface& surface);
+
+nlohmann::json to_json(const TrueSurfaceDistance& distance);
+
+}  // namespace mcquad

@@ -1,0 +1,23 @@
+#pragma once
+
+#include <Eigen/Geometry>
+
+#include "core/quad_mesh.h"
+
+namespace mcquad {
+
+//! The one fold test: two faces fold over each other when their normals
+//! (any length) are more than 120 degrees apart, a face flipped over its
+//! neighbour. The metrics count folds with it and the crossing guard holds
+//! moves back with it.
+inline bool normals_fold(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return a.dot(b) < -0.5 * a.norm() * b.norm();
+}
+
+//! Whether the two faces of an interior edge fold over each other.
+bool is_folded(const QuadMesh& mesh, QuadMesh::EdgeHandle edge);
+
+//! The edges whose faces fold over each other.
+size_t folded_edges(const QuadMesh& mesh);
+
+}  // namespace mcquad
