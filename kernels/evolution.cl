@@ -1,6 +1,6 @@
 /* OpenCL kernels of the Monte Carlo evolution. The host prepends
  * shared/mcq_platform.h, shared/mcq_philox.h, shared/mcq_cell_tree.h and
- * shared/mcq_monte_carlo.h (see host/opencl/program_sources.cpp), so these
+ * shared/mcq_monte_carlo.h (see host/opencl/program_cache.cpp), so these
  * kernels are thin loops over the same functions the serial path calls. */
 
 /* One Jacobi step: every vertex reads the old positions and normals and

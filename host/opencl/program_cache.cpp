@@ -6,14 +6,8 @@
 #include <tuple>
 
 #include "core/errors.h"
+#include "embedded_kernels.h"  // generated from kernels/ (cmake/embed_sources.cmake)
 
-namespace mcquad::embedded {
-extern const char* const mcq_platform_h;
-extern const char* const mcq_philox_h;
-extern const char* const mcq_cell_tree_h;
-extern const char* const mcq_monte_carlo_h;
-extern const char* const evolution_cl;
-}  // namespace mcquad::embedded
 
 namespace mcquad {
 

@@ -15,12 +15,9 @@
 #include "io/point_cloud_io.h"
 #include "metrics/mesh_metrics.h"
 #include "pipeline/fit.h"
+#include "embedded_report_page.h"  // generated from report_page.html (cmake/embed_sources.cmake)
 
 namespace mcquad {
-namespace embedded {
-extern const char* const report_page_html;
-}
-
 namespace {
 
 //! Six significant digits: what a float holds, and half the bytes of %.17g.
