@@ -52,6 +52,12 @@ int report_verdict(const Verdict& verdict, bool strict) {
   return strict && !verdict.passed ? kExitVerdict : kExitOk;
 }
 
+//! The CLI11 check for a ranged fit option, from the library's one table.
+CLI::Range range(const char* name) {
+  const OptionRange& r = fit_option_range(name);
+  return CLI::Range(r.low, r.high);
+}
+
 struct FitCommand {
   std::string points, skeleton, output, report, html, backend = "auto", ends = "auto", stage = "refined", mode = "robust";
   std::string projection = "mean", fill_holes = "on", crossing_guard = "on", own_cells = "on", local_epsilon = "on";
@@ -71,14 +77,14 @@ struct FitCommand {
     app->add_option("--ends", ends, "ends: auto (decided from the cloud), open or capped")
         ->check(CLI::IsMember({"auto", "open", "capped"}))->capture_default_str();
     app->add_option("--start-fraction", init.start_fraction, "initial mesh radius as a fraction of the local cloud radius")
-        ->check(CLI::Range(0.05, 0.95))->capture_default_str();
+        ->check(range("start_fraction"))->capture_default_str();
     app->add_option("--resolution", init.resolution, "target edge length of the refined mesh (0 = 16 vertices around a tube)")
-        ->check(CLI::NonNegativeNumber)->capture_default_str();
+        ->check(range("resolution"))->capture_default_str();
     app->add_option("--target-vertices", init.target_vertices, "refine until at least this many vertices (0 = off)")
         ->capture_default_str();
     app->add_option("--min-junction-angle", junction_degrees,
                     "junctions whose bones fork more acutely move to where the cloud's tubes part (0 = never)")
-        ->check(CLI::Range(0.0, 120.0))->capture_default_str();
+        ->check(range("min_junction_angle"))->capture_default_str();
     app->add_option("--write-skeleton", options.construction_skeleton, "write the skeleton the mesh is built on (OBJ)");
     if (!evolution) {
       app->add_option("--stage", stage, "stop after: blocks, extruded or refined")
@@ -93,7 +99,7 @@ struct FitCommand {
     app->add_option("--mode", mode, "robust (improvements over the paper, docs/DESIGN.md) or paper (the paper's step exactly)")
         ->check(CLI::IsMember({"robust", "paper"}))->capture_default_str();
     app->add_option("--relaxation", e.relaxation, "robust mode: tangential relaxation weight before each step (0 = off)")
-        ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+        ->check(range("relaxation"))->capture_default_str();
     app->add_option("--projection", projection, "robust mode: a cell's distance along a ray from its samples: mean, or min (the paper's)")
         ->check(CLI::IsMember({"mean", "min"}))->capture_default_str();
     app->add_option("--fill-holes", fill_holes, "robust mode: vertices that find no cell take their neighbours' offset (on, off)")
@@ -102,26 +108,26 @@ struct FitCommand {
         ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
     app->add_option("--held-back-relaxation", e.held_back_relaxation,
                     "robust mode: tangential relaxation weight for the vertices the crossing guard held back (0 = off)")
-        ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+        ->check(range("held_back_relaxation"))->capture_default_str();
     app->add_option("--own-cells", own_cells, "robust mode: a vertex sees only the cells of the bones near its own (on, off)")
         ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
     app->add_option("--local-epsilon", local_epsilon, "robust mode: epsilon and the ray reach scale with the local radius (on, off)")
         ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
     app->add_option("--hit-band", e.hit_band,
                     "robust mode: a ray averages every cell within this fraction of epsilon of its first hit (0 = the first cell only)")
-        ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+        ->check(range("hit_band"))->capture_default_str();
     app->add_option("--iterations", e.iterations, "maximal number of iterations")->capture_default_str();
     app->add_option("--tolerance", e.tolerance, "stop when the error level improves by less than this fraction (0 = never)")
-        ->check(CLI::NonNegativeNumber)->capture_default_str();
+        ->check(range("tolerance"))->capture_default_str();
     app->add_option("--seed", e.seed, "random seed")->capture_default_str();
-    app->add_option("--cones", e.cones, "c: number of cones")->check(CLI::Range(1u, 64u))->capture_default_str();
-    app->add_option("--generators", e.generators, "r: rays per cone")->check(CLI::Range(1u, 64u))->capture_default_str();
-    app->add_option("--alpha-max", alpha_degrees, "maximal cone half angle, degrees")->check(CLI::Range(0.0, 89.0))->capture_default_str();
-    app->add_option("--samples", e.samples, "m: random samples per hit cell")->check(CLI::Range(1u, 1024u))->capture_default_str();
+    app->add_option("--cones", e.cones, "c: number of cones")->check(range("cones"))->capture_default_str();
+    app->add_option("--generators", e.generators, "r: rays per cone")->check(range("generators"))->capture_default_str();
+    app->add_option("--alpha-max", alpha_degrees, "maximal cone half angle, degrees")->check(range("alpha_max"))->capture_default_str();
+    app->add_option("--samples", e.samples, "m: random samples per hit cell")->check(range("samples"))->capture_default_str();
     app->add_option("--epsilon", e.epsilon, "feasibility bound and ray reach (0 = 0.6 x median local radius)")
-        ->check(CLI::NonNegativeNumber)->capture_default_str();
+        ->check(range("epsilon"))->capture_default_str();
     app->add_option("--leaf-size", options.leaf_size, "maximal points per cell (0 = 6, growing in proportion above 2 million points)")
-        ->check(CLI::Range(size_t(0), size_t(1) << 20))->capture_default_str();
+        ->check(range("leaf_size"))->capture_default_str();
     app->add_option("--snapshots", options.snapshots_directory, "write the mesh after every iteration into this directory");
     app->add_option("--surfaces", options.surfaces.cad_path, "also write the final mesh as B-spline surfaces (.step, .stp, .iges, .igs)");
     app->add_option("--control-nets", options.surfaces.control_nets_path, "also write the surfaces' control nets (.obj, .off, .ply, .om)");

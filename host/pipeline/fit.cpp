@@ -103,10 +103,24 @@ nlohmann::json parameters_json(const FitOptions& o, double epsilon, double media
           {"median_radius", median_radius}};
 }
 
-void check_range(const char* option, double value, double lo, double hi) {
-  if (!(value >= lo && value <= hi))
-    throw InputError(std::string(option) + ": " + std::to_string(value) + " is outside [" + std::to_string(lo) + ", " +
-                     std::to_string(hi) + "]");
+constexpr double kDegrees = 180.0 / M_PI;
+
+//! Every ranged option of fit, in user units.
+constexpr OptionRange kOptionRanges[] = {
+    {"start_fraction", 0.05, 0.95}, {"resolution", 0, HUGE_VAL},   {"min_junction_angle", 0, 120},
+    {"relaxation", 0, 1},           {"held_back_relaxation", 0, 1}, {"hit_band", 0, 1},
+    {"tolerance", 0, HUGE_VAL},     {"cones", 1, 64},               {"generators", 1, 64},
+    {"alpha_max", 0, 89},           {"samples", 1, 1024},           {"epsilon", 0, HUGE_VAL},
+    {"leaf_size", 0, double(size_t(1) << 20)},
+};
+
+void check_range(const char* option, double value) {
+  const OptionRange& range = fit_option_range(option);
+  // Angles come back from radians with a rounding error; an ulp over the bound is the bound.
+  double slack = 1e-9 * std::max(1.0, std::abs(range.high));
+  if (!(value >= range.low - slack && value <= range.high + slack))
+    throw InputError(std::string(option) + ": " + std::to_string(value) + " is outside [" + std::to_string(range.low) +
+                     ", " + std::to_string(range.high) + "]");
 }
 
 //! Options out of range or contradicting each other, refused before any
@@ -115,19 +129,19 @@ void check_range(const char* option, double value, double lo, double hi) {
 void check_fit_options(const FitOptions& options) {
   const auto& e = options.evolution;
   const auto& i = options.initial;
-  check_range("start_fraction", i.start_fraction, 0.05, 0.95);
-  check_range("resolution", i.resolution, 0, HUGE_VAL);
-  check_range("min_junction_angle", i.min_junction_angle, 0, 120.0 * M_PI / 180.0 + 1e-12);
-  check_range("relaxation", e.relaxation, 0, 1);
-  check_range("held_back_relaxation", e.held_back_relaxation, 0, 1);
-  check_range("hit_band", e.hit_band, 0, 1);
-  check_range("tolerance", e.tolerance, 0, HUGE_VAL);
-  check_range("cones", e.cones, 1, 64);
-  check_range("generators", e.generators, 1, 64);
-  check_range("alpha_max", e.alpha_max, 0, 89.0 * M_PI / 180.0 + 1e-12);
-  check_range("samples", e.samples, 1, 1024);
-  check_range("epsilon", e.epsilon, 0, HUGE_VAL);
-  check_range("leaf_size", double(options.leaf_size), 0, double(size_t(1) << 20));
+  check_range("start_fraction", i.start_fraction);
+  check_range("resolution", i.resolution);
+  check_range("min_junction_angle", i.min_junction_angle * kDegrees);
+  check_range("relaxation", e.relaxation);
+  check_range("held_back_relaxation", e.held_back_relaxation);
+  check_range("hit_band", e.hit_band);
+  check_range("tolerance", e.tolerance);
+  check_range("cones", e.cones);
+  check_range("generators", e.generators);
+  check_range("alpha_max", e.alpha_max * kDegrees);
+  check_range("samples", e.samples);
+  check_range("epsilon", e.epsilon);
+  check_range("leaf_size", double(options.leaf_size));
   if (options.evolve && i.stage != "refined") throw InputError("--stage applies to 'mcquad init' only");
   check_cad_unit(options.surfaces.units);
 }
@@ -273,6 +287,12 @@ FitResult run_fit(FitInput input, const FitOptions& options) {
   check_point_cloud(input.cloud, input.points_name);
   StageTimer timer;
   return fit_loaded(std::move(input), options, timer);
+}
+
+const OptionRange& fit_option_range(const std::string& name) {
+  for (const OptionRange& range : kOptionRanges)
+    if (name == range.name) return range;
+  throw InputError("no range is defined for the option '" + name + "'");
 }
 
 EndMode end_mode_from_name(const std::string& name, const std::string& option) {

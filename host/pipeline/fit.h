@@ -56,6 +56,16 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
 //! for an empty cloud, non-finite coordinates or bones naming no node.
 FitResult run_fit(FitInput input, const FitOptions& options);
 
+//! The range an option must lie in, in the units the CLI and the Python
+//! package take it (angles in degrees). One table for both: the CLI checks
+//! it while parsing, run_fit for every other caller.
+struct OptionRange {
+  const char* name;  //!< as the Python keyword: start_fraction, alpha_max, ...
+  double low, high;
+};
+//! The range of a ranged option (InputError for a name without one).
+const OptionRange& fit_option_range(const std::string& name);
+
 //! Option words as the CLI and the Python package spell them. InputError
 //! naming `option` and the accepted words for anything else.
 EndMode end_mode_from_name(const std::string& name, const std::string& option = "ends");
