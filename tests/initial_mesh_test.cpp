@@ -50,24 +50,44 @@ MeshStatistics expect_initial_topology(const InitialMesh& initial, const Skeleto
   return s;
 }
 
+//! A generated shape, its skeleton graph and radii: what both property tests start from.
+struct ShapeUnderTest {
+  GeneratedShape shape;
+  SkeletonGraph graph;
+  BoneAssignment bones;
+  explicit ShapeUnderTest(const ShapeCase& c)
+      : shape(test::small_shape(c.name, c.points, c.options)),
+        graph(build_skeleton_graph(shape.skeleton, c.name)),
+        bones(assign_points_to_bones(graph, shape.cloud, c.name)) {}
+};
+
+//! Builds the initial mesh at the two resolutions every property must hold
+//! at (the coarsest, and refined to at least 4000 vertices), checks its
+//! topology, then calls `check(initial, statistics)`; also checks that both
+//! levels have as many irregular vertices (refinement adds none).
+template <typename Check>
+void at_both_levels(const ShapeCase& c, const ShapeUnderTest& t, Check check) {
+  size_t irregular_at_first_level = 0;
+  for (int level = 0; level < 2; ++level) {
+    InitialMeshOptions options;
+    options.target_vertices = level == 0 ? 1 : 4000;
+    InitialMesh initial = build_initial_mesh(t.graph, t.bones, t.shape.cloud, options, c.name);
+    MeshStatistics s = expect_initial_topology(initial, t.graph, t.shape);
+    if (level == 0) irregular_at_first_level = s.irregular_vertices;
+    else EXPECT_EQ(s.irregular_vertices, irregular_at_first_level);
+    check(initial, s);
+  }
+}
+
 class InitialMeshProperties : public testing::TestWithParam<ShapeCase> {};
 
 //! Every property the issue asks of the initial mesh, at two resolutions.
 TEST_P(InitialMeshProperties, HoldOnGeneratedShape) {
   const ShapeCase& c = GetParam();
-  GeneratedShape shape = test::small_shape(c.name, c.points, c.options);
-  SkeletonGraph graph = build_skeleton_graph(shape.skeleton, c.name);
-  BoneAssignment bones = assign_points_to_bones(graph, shape.cloud, c.name);
-  size_t irregular_at_first_level = 0;
-  for (int level = 0; level < 2; ++level) {
-    InitialMeshOptions options;
-    options.target_vertices = level == 0 ? 1 : 4000;
-    InitialMesh initial = build_initial_mesh(graph, bones, shape.cloud, options, c.name);
+  ShapeUnderTest t(c);
+  const GeneratedShape& shape = t.shape;
+  at_both_levels(c, t, [&](const InitialMesh& initial, const MeshStatistics&) {
     const QuadMesh& mesh = initial.mesh;
-    MeshStatistics s = expect_initial_topology(initial, graph, shape);
-    // As many irregular vertices at every level.
-    if (level == 0) irregular_at_first_level = s.irregular_vertices;
-    else EXPECT_EQ(s.irregular_vertices, irregular_at_first_level);
     // Oriented out of the cloud: the mesh winds once, positively, around
     // every node of the skeleton it was built on; and no face folds over.
     if (shape.open_ends == 0) {
@@ -77,8 +97,8 @@ TEST_P(InitialMeshProperties, HoldOnGeneratedShape) {
     }
     EXPECT_EQ(folded_edges(mesh), 0u);
     // Away from junctions, every face also points away from its bone.
-    if (graph.node_count() == initial.skeleton.graph.node_count()) {
-      EXPECT_EQ(inward_faces(mesh, graph), 0u) << "faces turned into the tube";
+    if (t.graph.node_count() == initial.skeleton.graph.node_count()) {
+      EXPECT_EQ(inward_faces(mesh, t.graph), 0u) << "faces turned into the tube";
     }
     EXPECT_EQ(intersecting_face_pairs(mesh).size(), 0u);
     // Inside the cloud: every vertex inside the true surface.
@@ -87,7 +107,7 @@ TEST_P(InitialMeshProperties, HoldOnGeneratedShape) {
       EXPECT_LT(shape.surface.signed_distance(Eigen::Vector3d(p[0], p[1], p[2])), c.outside_tolerance)
           << "vertex " << v.idx();
     }
-  }
+  });
 }
 
 ShapeOptions with_angle(double angle) {
@@ -125,15 +145,8 @@ class JunctionTopology : public testing::TestWithParam<ShapeCase> {};
 //! (docs/CONSTRUCTION.md lists the counts still left on these shapes).
 TEST_P(JunctionTopology, HoldsAtAnyValence) {
   const ShapeCase& c = GetParam();
-  GeneratedShape shape = test::small_shape(c.name, c.points, c.options);
-  SkeletonGraph graph = build_skeleton_graph(shape.skeleton, c.name);
-  BoneAssignment bones = assign_points_to_bones(graph, shape.cloud, c.name);
-  size_t irregular_at_first_level = 0;
-  for (int level = 0; level < 2; ++level) {
-    InitialMeshOptions options;
-    options.target_vertices = level == 0 ? 1 : 4000;
-    InitialMesh initial = build_initial_mesh(graph, bones, shape.cloud, options, c.name);
-    MeshStatistics s = expect_initial_topology(initial, graph, shape);
+  ShapeUnderTest t(c);
+  at_both_levels(c, t, [&](const InitialMesh& initial, const MeshStatistics& s) {
     size_t budget = 0;
     const SkeletonGraph& built = initial.skeleton.graph;
     for (size_t node = 0; node < built.node_count(); ++node) {
@@ -142,14 +155,12 @@ TEST_P(JunctionTopology, HoldsAtAnyValence) {
       if (degree == 1) budget += 4;
     }
     EXPECT_LE(s.irregular_vertices, budget);
-    if (level == 0) irregular_at_first_level = s.irregular_vertices;
-    else EXPECT_EQ(s.irregular_vertices, irregular_at_first_level);
-  }
+  });
   // Outward: with every end capped, the mesh winds once round every node.
   InitialMeshOptions capped;
   capped.ends = EndMode::kCapped;
   capped.target_vertices = 1;
-  InitialMesh closed = build_initial_mesh(graph, bones, shape.cloud, capped, c.name);
+  InitialMesh closed = build_initial_mesh(t.graph, t.bones, t.shape.cloud, capped, c.name);
   for (size_t node = 0; node < closed.skeleton.graph.node_count(); ++node)
     EXPECT_NEAR(winding_number(closed.mesh, closed.skeleton.graph.positions[node]), 1.0, 1e-6) << "node " << node;
 }
