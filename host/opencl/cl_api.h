@@ -16,12 +16,6 @@
 
 namespace mcquad {
 
-//! Sets every argument of a kernel in order (no hand-numbered indices).
-template <typename... Args>
-void set_kernel_args(cl::Kernel& kernel, const Args&... args) {
-  cl_uint index = 0;
-  (kernel.setArg(index++, args), ...);
-}
 
 //! Human-readable name of an OpenCL error code.
 std::string cl_error_name(cl_int code);

@@ -1,5 +1,7 @@
 #include "opencl/opencl_backend.h"
 
+#include <stdexcept>
+
 #include "core/errors.h"
 #include "opencl/program_cache.h"
 
@@ -33,18 +35,14 @@ void OpenCLBackend::fail(const char* operation, const cl::Error& error) const {
 }
 
 template <typename T>
-cl::Buffer OpenCLBackend::upload(const std::vector<T>& data, cl_mem_flags flags) {
+DeviceArray<T> OpenCLBackend::upload(const std::vector<T>& data, cl_mem_flags flags) {
   // A CPU device reads host memory anyway: read-only arrays are used in
   // place (the cells and mesh outlive the backend, as for the serial one)
   // instead of being copied, which saves a copy of the cloud.
-  if (device_.type == "CPU" && flags == CL_MEM_READ_ONLY && !data.empty())
-    return cl::Buffer(context_, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, data.size() * sizeof(T),
-                      const_cast<T*>(data.data()));
-  // Zero-sized buffers are invalid in OpenCL; an empty array gets one element.
-  size_t bytes = std::max<size_t>(data.size(), 1) * sizeof(T);
-  cl::Buffer buffer(context_, flags, bytes);
-  if (!data.empty()) queue_.enqueueWriteBuffer(buffer, CL_FALSE, 0, data.size() * sizeof(T), data.data());
-  return buffer;
+  if (device_.type == "CPU" && flags == CL_MEM_READ_ONLY && !data.empty()) return DeviceArray<T>::in_place(context_, data);
+  DeviceArray<T> array(context_, data.size(), flags);
+  array.write(queue_, data, false);
+  return array;
 }
 
 void OpenCLBackend::load(const CellTree& cells, const MeshArrays& mesh, const SkeletonRegions& regions) {
@@ -67,18 +65,18 @@ void OpenCLBackend::load(const CellTree& cells, const MeshArrays& mesh, const Sk
     visible_bones_ = upload(regions.visible_bones);
     positions_ = upload(mesh.positions, CL_MEM_READ_WRITE);
     initial_positions_ = upload(mesh.positions);
-    initial_normals_ = cl::Buffer(context_, CL_MEM_READ_WRITE, std::max<size_t>(mesh.positions.size(), 1) * 4);
-    next_positions_ = cl::Buffer(context_, CL_MEM_READ_WRITE, std::max<size_t>(mesh.positions.size(), 1) * 4);
-    normals_ = cl::Buffer(context_, CL_MEM_READ_WRITE, std::max<size_t>(mesh.positions.size(), 1) * 4);
-    errors_ = cl::Buffer(context_, CL_MEM_READ_WRITE, std::max<size_t>(vertex_count_, 1) * 4);
+    initial_normals_ = Floats(context_, mesh.positions.size());
+    next_positions_ = Floats(context_, mesh.positions.size());
+    normals_ = Floats(context_, mesh.positions.size());
+    errors_ = Floats(context_, vertex_count_);
     reduce_group_size_ = std::min<size_t>(256, device_.device.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>());
     // Power of two for the tree reduction.
     while (reduce_group_size_ & (reduce_group_size_ - 1)) reduce_group_size_ &= reduce_group_size_ - 1;
     reduce_groups_ = std::min<size_t>(64, (vertex_count_ + reduce_group_size_ - 1) / reduce_group_size_ + 1);
-    partial_sums_ = cl::Buffer(context_, CL_MEM_READ_WRITE, reduce_groups_ * 4);
-    total_ = cl::Buffer(context_, CL_MEM_READ_WRITE, 4);
+    partial_sums_ = Floats(context_, reduce_groups_);
+    total_ = Floats(context_, 1);
     run_normals();
-    if (!mesh.positions.empty()) queue_.enqueueCopyBuffer(normals_, initial_normals_, 0, 0, mesh.positions.size() * 4);
+    initial_normals_.copy_from(queue_, normals_);
     queue_.finish();
   } catch (const cl::Error& e) {
     fail("uploading the cells and the mesh", e);
@@ -96,14 +94,14 @@ void OpenCLBackend::step(const device::mcq_step_params& params) {
       set_kernel_args(relax_kernel_, positions_, normals_, faces_, vertex_face_offsets_, vertex_faces_, boundary_,
                       next_positions_, params.relaxation, vertex_count_);
       queue_.enqueueNDRangeKernel(relax_kernel_, cl::NullRange, global_range(vertex_count_, kGroupSize), cl::NDRange(kGroupSize));
-      std::swap(positions_, next_positions_);
+      swap(positions_, next_positions_);
       run_normals();
     }
     set_kernel_args(evolve_kernel_, positions_, normals_, initial_positions_, initial_normals_, next_positions_, faces_,
                     vertex_face_offsets_, vertex_faces_, boundary_, node_bounds_, node_children_, cell_offsets_, points_,
                     cell_bones_, vertex_bones_, vertex_scale_, visible_offsets_, visible_bones_, params, vertex_count_);
     queue_.enqueueNDRangeKernel(evolve_kernel_, cl::NullRange, global_range(vertex_count_, kGroupSize), cl::NDRange(kGroupSize));
-    std::swap(positions_, next_positions_);
+    swap(positions_, next_positions_);
     run_normals();
   } catch (const cl::Error& e) {
     fail("the Monte Carlo step", e);
@@ -115,13 +113,12 @@ double OpenCLBackend::error_level() {
     set_kernel_args(errors_kernel_, positions_, node_bounds_, node_children_, cell_offsets_, points_, cell_centroids_,
                     cell_normals_, errors_, vertex_count_);
     queue_.enqueueNDRangeKernel(errors_kernel_, cl::NullRange, global_range(vertex_count_, kGroupSize), cl::NDRange(kGroupSize));
-    set_kernel_args(reduce_kernel_, errors_, partial_sums_, cl::Local(reduce_group_size_ * 4), vertex_count_);
+    set_kernel_args(reduce_kernel_, errors_, partial_sums_, cl::Local(reduce_group_size_ * sizeof(float)), vertex_count_);
     queue_.enqueueNDRangeKernel(reduce_kernel_, cl::NullRange, cl::NDRange(reduce_groups_ * reduce_group_size_),
                                 cl::NDRange(reduce_group_size_));
-    set_kernel_args(reduce_kernel_, partial_sums_, total_, cl::Local(reduce_group_size_ * 4), uint32_t(reduce_groups_));
+    set_kernel_args(reduce_kernel_, partial_sums_, total_, cl::Local(reduce_group_size_ * sizeof(float)), uint32_t(reduce_groups_));
     queue_.enqueueNDRangeKernel(reduce_kernel_, cl::NullRange, cl::NDRange(reduce_group_size_), cl::NDRange(reduce_group_size_));
-    float total = 0;
-    queue_.enqueueReadBuffer(total_, CL_TRUE, 0, 4, &total);
+    float total = total_.read(queue_)[0];
     return vertex_count_ ? double(total) / vertex_count_ : 0.0;
   } catch (const cl::Error& e) {
     fail("the error level", e);
@@ -137,18 +134,17 @@ void OpenCLBackend::finish() {
 }
 
 std::vector<float> OpenCLBackend::positions() {
-  std::vector<float> out(3 * size_t(vertex_count_));
   try {
-    if (!out.empty()) queue_.enqueueReadBuffer(positions_, CL_TRUE, 0, out.size() * 4, out.data());
+    return positions_.read(queue_);
   } catch (const cl::Error& e) {
     fail("reading the positions back", e);
   }
-  return out;
 }
 
 void OpenCLBackend::set_positions(const std::vector<float>& positions) {
   try {
-    if (!positions.empty()) queue_.enqueueWriteBuffer(positions_, CL_TRUE, 0, positions.size() * 4, positions.data());
+    if (positions.size() != positions_.size()) throw std::invalid_argument("set_positions: wrong number of coordinates");
+    positions_.write(queue_, positions);
     run_normals();
   } catch (const cl::Error& e) {
     fail("writing the positions", e);
@@ -156,13 +152,11 @@ void OpenCLBackend::set_positions(const std::vector<float>& positions) {
 }
 
 std::vector<float> OpenCLBackend::normals() {
-  std::vector<float> out(3 * size_t(vertex_count_));
   try {
-    if (!out.empty()) queue_.enqueueReadBuffer(normals_, CL_TRUE, 0, out.size() * 4, out.data());
+    return normals_.read(queue_);
   } catch (const cl::Error& e) {
     fail("reading the normals back", e);
   }
-  return out;
 }
 
 std::string cl_error_name(cl_int code) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "evolution/evolution_backend.h"
+#include "opencl/device_array.h"
 #include "opencl/device_selection.h"
 
 namespace mcquad {
@@ -28,8 +29,11 @@ class OpenCLBackend : public EvolutionBackend {
   cl::Program& program() { return program_; }
 
  private:
+  using Floats = DeviceArray<float>;
+  using Indices = DeviceArray<uint32_t>;
+  //! A read-only array of the host's, used in place on a CPU device.
   template <typename T>
-  cl::Buffer upload(const std::vector<T>& data, cl_mem_flags flags = CL_MEM_READ_ONLY);
+  DeviceArray<T> upload(const std::vector<T>& data, cl_mem_flags flags = CL_MEM_READ_ONLY);
   void run_normals();
   //! Rethrows cl::Error as DeviceError naming the device and the operation.
   [[noreturn]] void fail(const char* operation, const cl::Error& error) const;
@@ -39,11 +43,13 @@ class OpenCLBackend : public EvolutionBackend {
   cl::CommandQueue queue_;
   cl::Program program_;
   cl::Kernel evolve_kernel_, normals_kernel_, errors_kernel_, reduce_kernel_, relax_kernel_;
-  cl::Buffer node_bounds_, node_children_, cell_offsets_, points_, cell_centroids_, cell_normals_;
-  cl::Buffer faces_, vertex_face_offsets_, vertex_faces_, boundary_;
-  cl::Buffer positions_, next_positions_, normals_, errors_, partial_sums_, total_;
-  cl::Buffer initial_positions_, initial_normals_;  //!< where the evolution started, for hole filling
-  cl::Buffer cell_bones_, vertex_bones_, vertex_scale_, visible_offsets_, visible_bones_;  //!< skeleton regions
+  Floats node_bounds_, points_, cell_centroids_, cell_normals_;
+  DeviceArray<int32_t> node_children_;
+  Indices cell_offsets_, faces_, vertex_face_offsets_, vertex_faces_, boundary_;
+  Floats positions_, next_positions_, normals_, errors_, partial_sums_, total_;
+  Floats initial_positions_, initial_normals_;  //!< where the evolution started, for hole filling
+  Indices cell_bones_, vertex_bones_, visible_offsets_, visible_bones_;  //!< skeleton regions
+  Floats vertex_scale_;
   uint32_t vertex_count_ = 0;
   size_t reduce_groups_ = 0, reduce_group_size_ = 0;
 };
