@@ -15,6 +15,8 @@
 #ifdef MCQUAD_WITH_OPENCL
 #include "opencl/device_selection.h"
 #include "opencl/opencl_backend.h"
+#include "opencl/program_cache.h"
+#include "embedded_test_kernels.h"  // generated from kernels/test_kernels.cl
 #endif
 
 namespace mcquad::test {
@@ -75,6 +77,22 @@ inline std::unique_ptr<OpenCLBackend> opencl_or_skip() {
     return nullptr;
   }
   return std::make_unique<OpenCLBackend>(select_device(""));
+}
+
+//! A context, queue and program of the shared kernel code with the tests'
+//! hooks (kernels/test_kernels.cl), on the device mcquad would choose.
+struct TestProgram {
+  cl::Context context;
+  cl::CommandQueue queue;
+  cl::Program program;
+};
+inline TestProgram test_program() {
+  DeviceInfo device = select_device("");
+  TestProgram t;
+  t.context = cl::Context(device.device);
+  t.queue = cl::CommandQueue(t.context, device.device);
+  t.program = build_program(t.context, device.device, shared_kernel_source() + embedded::test_kernels_cl);
+  return t;
 }
 
 //! Vertices whose positions differ by more than `tolerance` in a coordinate.

@@ -213,9 +213,10 @@ TEST(OpenCLParity, SameSeedSameResultOnTheDevice) {
 TEST(OpenCLKernels, PhiloxRaysAndTraversalMatchTheHost) {
   REQUIRE_OPENCL(opencl);
   Fixture f("tube", 8000);
-  opencl->load(f.cells, f.arrays, f.regions);
-  cl::Context& context = opencl->context();
-  cl::CommandQueue& queue = opencl->queue();
+  opencl->load(f.cells, f.arrays, f.regions);  // for the mesh's normals, as the step computes them
+  test::TestProgram hooks = test::test_program();
+  cl::Context& context = hooks.context;
+  cl::CommandQueue& queue = hooks.queue;
   // Philox streams.
   std::vector<uint32_t> counters, keys;
   for (uint32_t i = 0; i < 64; ++i) {
@@ -228,7 +229,7 @@ TEST(OpenCLKernels, PhiloxRaysAndTraversalMatchTheHost) {
   };
   cl::Buffer c = input(counters), k = input(keys);
   cl::Buffer out(context, CL_MEM_WRITE_ONLY, counters.size() * 4);
-  cl::Kernel philox(opencl->program(), "test_philox");
+  cl::Kernel philox(hooks.program, "test_philox");
   set_kernel_args(philox, c, k, out, uint32_t(64));
   queue.enqueueNDRangeKernel(philox, cl::NullRange, cl::NDRange(64));
   std::vector<uint32_t> device_words(counters.size());
@@ -244,7 +245,7 @@ TEST(OpenCLKernels, PhiloxRaysAndTraversalMatchTheHost) {
   uint32_t rays = device::mcq_ray_count(4, 6);
   cl::Buffer n = input(normals);
   cl::Buffer directions(context, CL_MEM_READ_WRITE, size_t(count) * rays * 12);
-  cl::Kernel ray_kernel(opencl->program(), "test_ray_directions");
+  cl::Kernel ray_kernel(hooks.program, "test_ray_directions");
   set_kernel_args(ray_kernel, n, 4u, 6u, float(M_PI / 18), directions, count);
   queue.enqueueNDRangeKernel(ray_kernel, cl::NullRange, cl::NDRange(count));
   std::vector<float> device_dirs(size_t(count) * rays * 3);
@@ -265,7 +266,7 @@ TEST(OpenCLKernels, PhiloxRaysAndTraversalMatchTheHost) {
   cl::Buffer bounds = input(f.cells.node_bounds);
   cl::Buffer children = input(f.cells.node_children);
   cl::Buffer hits(context, CL_MEM_WRITE_ONLY, size_t(count) * rays * 4);
-  cl::Kernel hit_kernel(opencl->program(), "test_ray_hits");
+  cl::Kernel hit_kernel(hooks.program, "test_ray_hits");
   cl::Buffer cell_bones = input(f.regions.cell_bones);
   std::vector<uint32_t> seen_by_bone0(f.regions.visible_bones.begin(),
                                       f.regions.visible_bones.begin() + f.regions.visible_offsets[1]);

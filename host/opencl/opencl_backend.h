@@ -23,11 +23,6 @@ class OpenCLBackend : public EvolutionBackend {
   std::vector<float> normals() override;
   void set_positions(const std::vector<float>& positions) override;
 
-  //! Queue and program for kernel unit tests.
-  cl::CommandQueue& queue() { return queue_; }
-  cl::Context& context() { return context_; }
-  cl::Program& program() { return program_; }
-
  private:
   using Floats = DeviceArray<float>;
   using Indices = DeviceArray<uint32_t>;

@@ -11,16 +11,18 @@
 
 namespace mcquad {
 
-std::string mcquad_program_source() {
+std::string shared_kernel_source() {
   return std::string(embedded::mcq_platform_h) + embedded::mcq_philox_h + embedded::mcq_cell_tree_h +
-         embedded::mcq_monte_carlo_h + embedded::evolution_cl;
+         embedded::mcq_monte_carlo_h;
 }
 
-cl::Program mcquad_program(const cl::Context& context, const cl::Device& device, const std::string& options) {
+std::string mcquad_program_source() { return shared_kernel_source() + embedded::evolution_cl; }
+
+cl::Program build_program(const cl::Context& context, const cl::Device& device, const std::string& source,
+                          const std::string& options) {
   static std::mutex mutex;
   static std::map<std::tuple<cl_context, cl_device_id, std::string, size_t>, cl::Program> cache;
-  static const std::string source = mcquad_program_source();
-  static const size_t source_hash = std::hash<std::string>()(source);
+  const size_t source_hash = std::hash<std::string>()(source);
   std::lock_guard<std::mutex> lock(mutex);
   auto key = std::make_tuple(context(), device(), options, source_hash);
   auto found = cache.find(key);
@@ -34,6 +36,11 @@ cl::Program mcquad_program(const cl::Context& context, const cl::Device& device,
   }
   cache.emplace(key, program);
   return program;
+}
+
+cl::Program mcquad_program(const cl::Context& context, const cl::Device& device, const std::string& options) {
+  static const std::string source = mcquad_program_source();
+  return build_program(context, device, source, options);
 }
 
 }  // namespace mcquad

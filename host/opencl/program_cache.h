@@ -15,4 +15,12 @@ cl::Program mcquad_program(const cl::Context& context, const cl::Device& device,
 //! The concatenated source the program is built from (for tests and tools).
 std::string mcquad_program_source();
 
+//! The shared headers alone, in the order the kernels need them: what any
+//! program of mcquad's kernels starts with (the tests append their hooks).
+std::string shared_kernel_source();
+
+//! Builds `source` for one device, cached like mcquad_program.
+cl::Program build_program(const cl::Context& context, const cl::Device& device, const std::string& source,
+                          const std::string& options = "");
+
 }  // namespace mcquad
