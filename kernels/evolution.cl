@@ -18,17 +18,13 @@ __kernel void evolve_vertices(__global const float* positions, __global const fl
                               const uint vertex_count) {
   uint v = get_global_id(0);
   if (v >= vertex_count) return;
-  mcq_regions regions;
-  regions.cell_bones = cell_bones;
-  regions.vertex_bones = vertex_bones;
-  regions.vertex_scale = vertex_scale;
-  regions.visible_offsets = visible_offsets;
-  regions.visible_bones = visible_bones;
+  mcq_topology mesh = {faces, vertex_face_offsets, vertex_faces, boundary};
+  mcq_cells cells = {node_bounds, node_children, cell_offsets, points, 0, 0};  /* the step needs no planes */
+  mcq_regions regions = {cell_bones, vertex_bones, vertex_scale, visible_offsets, visible_bones};
   uint feasible;
   mcq_store3(new_positions, v,
-             mcq_evolve_vertex(positions, normals, initial_positions, initial_normals, faces, vertex_face_offsets,
-                               vertex_faces, boundary, node_bounds, node_children, cell_offsets, points, regions, v,
-                               params, &feasible));
+             mcq_evolve_vertex(positions, normals, initial_positions, initial_normals, mesh, cells, regions, v, params,
+                               &feasible));
 }
 
 __kernel void relax_tangentially(__global const float* positions, __global const float* normals,
@@ -56,8 +52,8 @@ __kernel void vertex_errors(__global const float* positions, __global const floa
                             const uint vertex_count) {
   uint v = get_global_id(0);
   if (v >= vertex_count) return;
-  errors[v] = mcq_vertex_error(node_bounds, node_children, cell_offsets, points, cell_centroids, cell_normals,
-                               mcq_load3(positions, v));
+  mcq_cells cells = {node_bounds, node_children, cell_offsets, points, cell_centroids, cell_normals};
+  errors[v] = mcq_vertex_error(cells, mcq_load3(positions, v));
 }
 
 /* Sums `count` floats into partial sums, one per work-group, by a tree

@@ -156,4 +156,12 @@ CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size, bool pad_box
   return cells;
 }
 
+double mean_vertex_error(const CellTree& cells, const std::vector<float>& positions) {
+  const device::mcq_cells view = cells_view(cells);
+  const size_t vertices = positions.size() / 3;
+  double sum = 0;
+  for (size_t v = 0; v < vertices; ++v) sum += device::mcq_vertex_error(view, device::mcq_load3(positions.data(), uint32_t(v)));
+  return vertices ? sum / double(vertices) : 0.0;
+}
+
 }  // namespace mcquad

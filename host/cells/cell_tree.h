@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/point_cloud.h"
+#include "core/shared_math.h"
 
 namespace mcquad {
 
@@ -26,6 +27,18 @@ struct CellTree {
   size_t point_count() const { return points.size() / 3; }
   size_t byte_size() const;
 };
+
+//! The cells as the shared kernel code reads them: pointers into `cells`,
+//! which must outlive the view.
+inline device::mcq_cells cells_view(const CellTree& cells) {
+  return {cells.node_bounds.data(), cells.node_children.data(), cells.cell_offsets.data(),
+          cells.points.data(),      cells.cell_centroids.data(), cells.cell_normals.data()};
+}
+
+//! The paper's error level e-bar: the mean over the vertices (`positions`,
+//! 3 floats each) of the distance to the plane of the cell holding the
+//! nearest cloud point. The serial backend and the metrics both take it here.
+double mean_vertex_error(const CellTree& cells, const std::vector<float>& positions);
 
 //! Builds the cells with at most `leaf_size` points each. Leaf boxes are
 //! padded by the cloud's median nearest-neighbour distance unless

@@ -25,6 +25,12 @@ struct SkeletonRegions {
   std::vector<uint32_t> visible_bones;    //!< sorted within each bone's run
 };
 
+//! The regions as the shared kernel code reads them (pointers into `regions`).
+inline device::mcq_regions regions_view(const SkeletonRegions& regions) {
+  return {regions.cell_bones.data(), regions.vertex_bones.data(), regions.vertex_scale.data(),
+          regions.visible_offsets.data(), regions.visible_bones.data()};
+}
+
 //! Bone b sees the bones within `window` times its radius of it along the
 //! skeleton (shortest path between their nearest ends; 0 for bones sharing
 //! a node). Two radii cover the cloud a bone's tube owns around bends and

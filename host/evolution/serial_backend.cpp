@@ -32,17 +32,14 @@ void SerialBackend::relax(float weight) {
 
 void SerialBackend::step(const device::mcq_step_params& params) {
   if (params.relaxation > 0.0f) relax(params.relaxation);
-  device::mcq_regions regions{regions_->cell_bones.data(), regions_->vertex_bones.data(), regions_->vertex_scale.data(),
-                              regions_->visible_offsets.data(), regions_->visible_bones.data()};
+  const device::mcq_topology topology = topology_view(mesh_);
+  const device::mcq_cells cells = cells_view(*cells_);
+  const device::mcq_regions regions = regions_view(*regions_);
   for (uint32_t v = 0; v < mesh_.vertex_count(); ++v) {
     uint32_t feasible;
     device::mcq_store3(next_positions_.data(), v,
                        device::mcq_evolve_vertex(positions_.data(), normals_.data(), mesh_.positions.data(),
-                                                 initial_normals_.data(), mesh_.faces.data(),
-                                                 mesh_.vertex_face_offsets.data(), mesh_.vertex_faces.data(),
-                                                 mesh_.boundary.data(), cells_->node_bounds.data(), cells_->node_children.data(),
-                                                 cells_->cell_offsets.data(), cells_->points.data(), regions, v, params,
-                                                 &feasible));
+                                                 initial_normals_.data(), topology, cells, regions, v, params, &feasible));
   }
   positions_.swap(next_positions_);
   update_normals();
@@ -53,13 +50,6 @@ void SerialBackend::set_positions(const std::vector<float>& positions) {
   update_normals();
 }
 
-double SerialBackend::error_level() {
-  double sum = 0;
-  for (uint32_t v = 0; v < mesh_.vertex_count(); ++v)
-    sum += device::mcq_vertex_error(cells_->node_bounds.data(), cells_->node_children.data(), cells_->cell_offsets.data(),
-                                    cells_->points.data(), cells_->cell_centroids.data(), cells_->cell_normals.data(),
-                                    device::mcq_load3(positions_.data(), v));
-  return mesh_.vertex_count() ? sum / double(mesh_.vertex_count()) : 0.0;
-}
+double SerialBackend::error_level() { return mean_vertex_error(*cells_, positions_); }
 
 }  // namespace mcquad

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/quad_mesh.h"
+#include "core/shared_math.h"
 
 namespace mcquad {
 
@@ -20,6 +21,11 @@ struct MeshArrays {
   size_t vertex_count() const { return positions.size() / 3; }
   size_t face_count() const { return faces.size() / 4; }
 };
+
+//! The connectivity as the shared kernel code reads it (pointers into `mesh`).
+inline device::mcq_topology topology_view(const MeshArrays& mesh) {
+  return {mesh.faces.data(), mesh.vertex_face_offsets.data(), mesh.vertex_faces.data(), mesh.boundary.data()};
+}
 
 //! Flattens an all-quad mesh (UnsupportedError for any other face).
 MeshArrays flatten_mesh(const QuadMesh& mesh);

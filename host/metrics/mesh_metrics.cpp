@@ -182,14 +182,11 @@ QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, co
   for (size_t k : largest_first(uncovered, QualityMetrics::kMaxSites))
     m.uncovered_sites.push_back(cloud.points[k * stride].cast<double>());
   m.cloud_to_mesh = summarize_distances(std::move(uncovered));
-  double sum = 0;
-  for (auto v : mesh.vertices()) {
-    const auto& p = mesh.point(v);
-    device::mcq_vec3 q = device::mcq_make_vec3(float(p[0]), float(p[1]), float(p[2]));
-    sum += device::mcq_vertex_error(cells.node_bounds.data(), cells.node_children.data(), cells.cell_offsets.data(),
-                                    cells.points.data(), cells.cell_centroids.data(), cells.cell_normals.data(), q);
-  }
-  m.error_level = mesh.n_vertices() ? sum / mesh.n_vertices() : 0.0;
+  std::vector<float> positions;
+  positions.reserve(3 * mesh.n_vertices());
+  for (auto v : mesh.vertices())
+    for (int k = 0; k < 3; ++k) positions.push_back(float(mesh.point(v)[k]));
+  m.error_level = mean_vertex_error(cells, positions);
   m.cloud_spacing = cells.point_spacing;
   if ((oriented && !oriented->empty()) || skeleton) {
     bool by_normals = oriented && !oriented->empty();

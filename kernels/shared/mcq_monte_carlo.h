@@ -32,6 +32,25 @@ typedef struct {
   const MCQ_GLOBAL mcq_uint* visible_bones;
 } mcq_regions;
 
+/* The flat cell tree, as laid out by host/cells/cell_tree.h (cells_view). */
+typedef struct {
+  const MCQ_GLOBAL float* node_bounds;
+  const MCQ_GLOBAL int* node_children;
+  const MCQ_GLOBAL mcq_uint* cell_offsets;
+  const MCQ_GLOBAL float* points;
+  const MCQ_GLOBAL float* cell_centroids;
+  const MCQ_GLOBAL float* cell_normals;
+} mcq_cells;
+
+/* The quad mesh's connectivity, as laid out by host/mesh/mesh_arrays.h
+ * (topology_view). */
+typedef struct {
+  const MCQ_GLOBAL mcq_uint* faces;
+  const MCQ_GLOBAL mcq_uint* vertex_face_offsets;
+  const MCQ_GLOBAL mcq_uint* vertex_faces;
+  const MCQ_GLOBAL mcq_uint* boundary;
+} mcq_topology;
+
 /* The cells vertex v may hit: those of the bones near its own with
  * params.own_cells, else all. */
 MCQ_FN mcq_cell_filter mcq_vertex_cell_filter(mcq_regions regions, mcq_uint v, mcq_step_params params) {
@@ -286,24 +305,20 @@ MCQ_FN mcq_vec3 mcq_hole_position(const MCQ_GLOBAL float* positions, const MCQ_G
  * for it. */
 MCQ_FN mcq_vec3 mcq_evolve_vertex(const MCQ_GLOBAL float* positions, const MCQ_GLOBAL float* normals,
                                   const MCQ_GLOBAL float* initial_positions, const MCQ_GLOBAL float* initial_normals,
-                                  const MCQ_GLOBAL mcq_uint* faces, const MCQ_GLOBAL mcq_uint* vertex_face_offsets,
-                                  const MCQ_GLOBAL mcq_uint* vertex_faces, const MCQ_GLOBAL mcq_uint* boundary,
-                                  const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
-                                  const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points,
-                                  mcq_regions regions, mcq_uint vertex, mcq_step_params params,
-                                  mcq_uint* feasible) {
+                                  mcq_topology mesh, mcq_cells cells, mcq_regions regions, mcq_uint vertex,
+                                  mcq_step_params params, mcq_uint* feasible) {
   mcq_vec3 q = mcq_load3(positions, vertex);
   mcq_vec3 n = mcq_load3(normals, vertex);
-  float delta = mcq_vertex_displacement(node_bounds, node_children, cell_offsets, points, regions, q, n, vertex, params,
-                                        feasible);
+  float delta = mcq_vertex_displacement(cells.node_bounds, cells.node_children, cells.cell_offsets, cells.points, regions,
+                                        q, n, vertex, params, feasible);
   mcq_vec3 target = mcq_add(q, mcq_scale(n, delta));
-  int in_hole = *feasible == 0u && params.fill_holes && !boundary[vertex];
+  int in_hole = *feasible == 0u && params.fill_holes && !mesh.boundary[vertex];
   if (in_hole)
-    target = mcq_hole_position(positions, initial_positions, initial_normals, faces, vertex_face_offsets, vertex_faces,
-                               vertex);
+    target = mcq_hole_position(positions, initial_positions, initial_normals, mesh.faces, mesh.vertex_face_offsets,
+                               mesh.vertex_faces, vertex);
   if (params.fold_guard && (delta != 0.0f || in_hole))
-    target = mcq_add(q, mcq_scale(mcq_sub(target, q), mcq_fold_safe_fraction(positions, faces, vertex_face_offsets,
-                                                                              vertex_faces, vertex, q, target)));
+    target = mcq_add(q, mcq_scale(mcq_sub(target, q), mcq_fold_safe_fraction(positions, mesh.faces, mesh.vertex_face_offsets,
+                                                                              mesh.vertex_faces, vertex, q, target)));
   return target;
 }
 
@@ -338,15 +353,12 @@ MCQ_FN mcq_vec3 mcq_relaxed_position(const MCQ_GLOBAL float* positions, const MC
 
 /* The paper's e_i: distance from q to the least-squares plane of the cell
  * holding q's nearest cloud point. */
-MCQ_FN float mcq_vertex_error(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
-                              const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points,
-                              const MCQ_GLOBAL float* cell_centroids, const MCQ_GLOBAL float* cell_normals,
-                              mcq_vec3 q) {
+MCQ_FN float mcq_vertex_error(mcq_cells cells, mcq_vec3 q) {
   float d2;
-  int cell = mcq_nearest_point_cell(node_bounds, node_children, cell_offsets, points, q, &d2);
+  int cell = mcq_nearest_point_cell(cells.node_bounds, cells.node_children, cells.cell_offsets, cells.points, q, &d2);
   if (cell < 0) return 0.0f;
-  mcq_vec3 g = mcq_load3(cell_centroids, (mcq_uint)cell);
-  mcq_vec3 t = mcq_load3(cell_normals, (mcq_uint)cell);
+  mcq_vec3 g = mcq_load3(cells.cell_centroids, (mcq_uint)cell);
+  mcq_vec3 t = mcq_load3(cells.cell_normals, (mcq_uint)cell);
   return MCQ_FABS(mcq_dot(t, mcq_sub(q, g)));
 }
 
