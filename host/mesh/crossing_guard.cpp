@@ -15,11 +15,11 @@ Eigen::Vector3d position(const std::vector<float>& positions, uint32_t v) {
   return {positions[3 * size_t(v)], positions[3 * size_t(v) + 1], positions[3 * size_t(v) + 2]};
 }
 
-//! Unit normal of quad f: its diagonals' cross product, as the kernels use.
+//! Unit normal of quad f: its vector area (core/quad_mesh.h), as the kernels take it.
 Eigen::Vector3d face_normal(const MeshArrays& mesh, const std::vector<float>& positions, size_t f) {
   const uint32_t* q = &mesh.faces[4 * f];
-  Eigen::Vector3d n = (position(positions, q[2]) - position(positions, q[0]))
-                          .cross(position(positions, q[3]) - position(positions, q[1]));
+  Eigen::Vector3d n = quad_vector_area({position(positions, q[0]), position(positions, q[1]), position(positions, q[2]),
+                                        position(positions, q[3])});
   double length = n.norm();
   return length > 0 ? Eigen::Vector3d(n / length) : n;
 }
