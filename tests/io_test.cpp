@@ -66,6 +66,27 @@ TEST(PointCloudIo, ReadsAsciiPlyWithNormalsAndOtherElements) {
   EXPECT_FLOAT_EQ(cloud.normals[1].y(), 1.0f);
 }
 
+// What the fit reads: no normal per point, only a strided sample of points
+// with their unit normals (zero normals left out), from PLY as from OBJ.
+TEST(PointCloudIo, ReadsAStridedSampleOfOrientedPointsInsteadOfEveryNormal) {
+  TempDir dir;
+  std::string ply = "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\nproperty float z\n"
+                    "property float nx\nproperty float ny\nproperty float nz\nend_header\n";
+  for (int i = 0; i < 6; ++i) ply += std::to_string(i) + " 0 0 " + (i == 2 ? "0 0 0" : "0 0 2") + "\n";
+  PointCloud cloud = read_point_cloud(dir.write("s.ply", ply), false, 3);  // every 2nd point
+  EXPECT_EQ(cloud.size(), 6u);
+  EXPECT_TRUE(cloud.normals.empty());
+  ASSERT_EQ(cloud.oriented.points.size(), 2u);  // points 0 and 4; point 2's normal is zero
+  EXPECT_FLOAT_EQ(cloud.oriented.points[1].x(), 4.0f);
+  EXPECT_FLOAT_EQ(cloud.oriented.normals[1].z(), 1.0f);
+  std::string obj;
+  for (int i = 0; i < 6; ++i) obj += "v " + std::to_string(i) + " 0 0\nvn 0 " + (i == 2 ? "0" : "1") + " 0\n";
+  PointCloud from_obj = read_point_cloud(dir.write("s.obj", obj), false, 3);
+  EXPECT_TRUE(from_obj.normals.empty());
+  ASSERT_EQ(from_obj.oriented.points.size(), 2u);
+  EXPECT_FLOAT_EQ(from_obj.oriented.points[1].x(), 4.0f);
+}
+
 TEST(PointCloudIo, RoundTripsThroughWrittenPly) {
   TempDir dir;
   PointCloud cloud;

@@ -61,18 +61,18 @@ void sort_spatially(PointCloud& cloud) {
   if (cloud.normals.size() == cloud.size()) permute(cloud.normals);
 }
 
+void add_oriented_point(OrientedSample& sample, const Eigen::Vector3f& p, const Eigen::Vector3f& n) {
+  float length = n.norm();
+  if (!std::isfinite(length) || length < 1e-6f) return;
+  sample.points.push_back(p);
+  sample.normals.push_back(n / length);
+}
+
 OrientedSample oriented_sample(const PointCloud& cloud, size_t max_points) {
   OrientedSample sample;
   if (cloud.normals.size() != cloud.size() || max_points == 0) return sample;
   size_t stride = std::max<size_t>(1, (cloud.size() + max_points - 1) / max_points);
-  for (size_t i = 0; i < cloud.size(); i += stride) {
-    const Eigen::Vector3f& n = cloud.normals[i];
-    float length = n.norm();
-    // Generated outliers and some scanners' unknowns carry zero normals.
-    if (!std::isfinite(length) || length < 1e-6f) continue;
-    sample.points.push_back(cloud.points[i]);
-    sample.normals.push_back(n / length);
-  }
+  for (size_t i = 0; i < cloud.size(); i += stride) add_oriented_point(sample, cloud.points[i], cloud.normals[i]);
   return sample;
 }
 

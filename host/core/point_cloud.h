@@ -6,18 +6,6 @@
 
 namespace mcquad {
 
-//! An unorganized point cloud. Positions are float (what the device uses and
-//! what scanners deliver); normals are optional and never required.
-struct PointCloud {
-  std::vector<Eigen::Vector3f> points;
-  std::vector<Eigen::Vector3f> normals;  //!< empty, or one per point
-
-  size_t size() const { return points.size(); }
-  bool empty() const { return points.empty(); }
-  //! Flat x,y,z array view of the points (Eigen::Vector3f is three packed floats).
-  const float* data() const { return reinterpret_cast<const float*>(points.data()); }
-};
-
 //! Points with the scan's own outward normals: what a fitted mesh's
 //! orientation is judged against. A strided sample keeps the memory small
 //! on huge clouds while pinning the fraction of faces down.
@@ -25,6 +13,25 @@ struct OrientedSample {
   std::vector<Eigen::Vector3f> points;
   std::vector<Eigen::Vector3f> normals;  //!< unit, one per point
   bool empty() const { return points.empty(); }
+};
+
+//! Adds p with its normal n, unit length, when n is usable (finite, not
+//! zero: generated outliers and some scanners' unknowns carry zero normals).
+void add_oriented_point(OrientedSample& sample, const Eigen::Vector3f& p, const Eigen::Vector3f& n);
+
+//! An unorganized point cloud. Positions are float (what the device uses and
+//! what scanners deliver); normals are optional and never required.
+struct PointCloud {
+  std::vector<Eigen::Vector3f> points;
+  std::vector<Eigen::Vector3f> normals;  //!< empty, or one per point
+  //! A strided sample of the points with their normals, when a reader was
+  //! asked for one instead of every normal (read_point_cloud).
+  OrientedSample oriented;
+
+  size_t size() const { return points.size(); }
+  bool empty() const { return points.empty(); }
+  //! Flat x,y,z array view of the points (Eigen::Vector3f is three packed floats).
+  const float* data() const { return reinterpret_cast<const float*>(points.data()); }
 };
 
 //! Every k-th point with a usable normal (finite, nonzero), at most about

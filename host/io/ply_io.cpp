@@ -184,9 +184,16 @@ class BinaryCursor {
 
 struct VertexColumns {
   int x = -1, y = -1, z = -1, nx = -1, ny = -1, nz = -1;
+  //! 0: normals (when read) go to cloud.normals; k: every k-th goes to cloud.oriented.
+  unsigned long long sample_stride = 0;
 };
 
-VertexColumns find_columns(const std::string& path, const PlyElement& vertex, bool with_normals) {
+//! The columns, with the stride that keeps about `oriented_sample` normals (0: all or none).
+VertexColumns find_columns(const std::string& path, const PlyElement& vertex, bool with_normals,
+                           size_t oriented_sample);
+
+VertexColumns find_columns(const std::string& path, const PlyElement& vertex, bool with_normals,
+                           size_t oriented_sample) {
   VertexColumns c;
   for (size_t i = 0; i < vertex.properties.size(); ++i) {
     const auto& p = vertex.properties[i];
@@ -195,7 +202,9 @@ VertexColumns find_columns(const std::string& path, const PlyElement& vertex, bo
     if (slot && !p.is_list) *slot = static_cast<int>(i);
   }
   if (c.x < 0 || c.y < 0 || c.z < 0) throw InputError(path + ": PLY vertex element lacks x, y or z");
-  if (!with_normals) c.nx = c.ny = c.nz = -1;
+  if (!with_normals && oriented_sample == 0) c.nx = c.ny = c.nz = -1;
+  if (!with_normals && oriented_sample > 0)
+    c.sample_stride = std::max<unsigned long long>(1, (vertex.count + oriented_sample - 1) / oriented_sample);
   return c;
 }
 
@@ -205,8 +214,10 @@ void store_vertex(const std::string& path, PointCloud& cloud, const VertexColumn
   if (!p.allFinite())
     throw InputError(path + ": vertex " + std::to_string(index) + ": coordinate is NaN or infinite");
   cloud.points.push_back(p.cast<float>());
-  if (c.nx >= 0 && c.ny >= 0 && c.nz >= 0)
-    cloud.normals.emplace_back(float(values[c.nx]), float(values[c.ny]), float(values[c.nz]));
+  if (c.nx < 0 || c.ny < 0 || c.nz < 0) return;
+  Eigen::Vector3f n(float(values[c.nx]), float(values[c.ny]), float(values[c.nz]));
+  if (c.sample_stride == 0) cloud.normals.push_back(n);
+  else if (index % c.sample_stride == 0) add_oriented_point(cloud.oriented, cloud.points.back(), n);
 }
 
 void skip_binary_element(const std::string& path, const PlyElement& element, BinaryCursor& cursor) {
@@ -236,7 +247,7 @@ void skip_binary_element(const std::string& path, const PlyElement& element, Bin
 }
 
 PointCloud read_binary_vertices(const std::string& path, std::string_view bytes, const PlyHeader& header,
-                                bool with_normals) {
+                                bool with_normals, size_t oriented_sample) {
   BinaryCursor cursor(bytes, header.body_offset, header.format == PlyFormat::kBinaryBig);
   PointCloud cloud;
   for (const auto& element : header.elements) {
@@ -245,7 +256,7 @@ PointCloud read_binary_vertices(const std::string& path, std::string_view bytes,
       continue;
     }
     if (element.has_lists()) throw InputError(path + ": PLY vertex element with list properties is not supported");
-    VertexColumns columns = find_columns(path, element, with_normals);
+    VertexColumns columns = find_columns(path, element, with_normals, oriented_sample);
     size_t stride = element.fixed_stride();
     if (element.count > cursor.remaining() / stride)
       throw InputError(path + ": truncated PLY: header claims " + std::to_string(element.count) +
@@ -264,7 +275,7 @@ PointCloud read_binary_vertices(const std::string& path, std::string_view bytes,
 }
 
 PointCloud read_ascii_vertices(const std::string& path, std::string_view bytes, const PlyHeader& header,
-                               bool with_normals) {
+                               bool with_normals, size_t oriented_sample) {
   std::string_view body = bytes.substr(header.body_offset);
   PointCloud cloud;
   size_t element_index = 0;
@@ -280,7 +291,7 @@ PointCloud read_ascii_vertices(const std::string& path, std::string_view bytes, 
     element = element_index < header.elements.size() ? &header.elements[element_index] : nullptr;
     entry = 0;
     if (element && element->name == "vertex") {
-      columns = find_columns(path, *element, with_normals);
+      columns = find_columns(path, *element, with_normals, oriented_sample);
       // Never trust the header's count for an allocation: cap by what the body can hold.
       cloud.points.reserve(std::min<unsigned long long>(element->count, body.size() / 6 + 1));
     }
@@ -320,12 +331,13 @@ PointCloud read_ascii_vertices(const std::string& path, std::string_view bytes, 
 
 }  // namespace
 
-PointCloud read_ply_cloud(const std::string& path, bool with_normals) {
+PointCloud read_ply_cloud(const std::string& path, bool with_normals, size_t oriented_sample) {
   MappedFile file(path);
   std::string_view bytes = file.view();
   PlyHeader header = parse_header(path, bytes);
-  PointCloud cloud = header.format == PlyFormat::kAscii ? read_ascii_vertices(path, bytes, header, with_normals)
-                                                        : read_binary_vertices(path, bytes, header, with_normals);
+  PointCloud cloud = header.format == PlyFormat::kAscii
+                         ? read_ascii_vertices(path, bytes, header, with_normals, oriented_sample)
+                         : read_binary_vertices(path, bytes, header, with_normals, oriented_sample);
   if (cloud.normals.size() != cloud.points.size()) cloud.normals.clear();
   return cloud;
 }

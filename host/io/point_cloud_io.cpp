@@ -103,15 +103,17 @@ PointCloud read_off_vertices(const std::string& path) {
 
 }  // namespace
 
-PointCloud read_point_cloud(const std::string& path, bool with_normals) {
+PointCloud read_point_cloud(const std::string& path, bool with_normals, size_t sample_size) {
   std::string ext = file_extension(path);
   PointCloud cloud;
-  if (ext == "ply") cloud = read_ply_cloud(path, with_normals);
+  if (ext == "ply") cloud = read_ply_cloud(path, with_normals, sample_size);
   else if (ext == "xyz" || ext == "txt" || ext == "csv" || ext == "pts") cloud = read_xyz(path);
   else if (ext == "obj") cloud = read_obj_vertices(path);
   else if (ext == "off") cloud = read_off_vertices(path);
   else throw InputError(path + ": unknown point cloud extension '." + ext + "' (expected .ply, .xyz, .txt, .csv, .obj, .off)");
   if (cloud.empty()) throw InputError(path + ": the point cloud is empty");
+  // The other formats read every normal; the sample is taken from them.
+  if (!with_normals && sample_size > 0 && cloud.oriented.empty()) cloud.oriented = oriented_sample(cloud, sample_size);
   if (cloud.normals.size() != cloud.points.size() || !with_normals) {
     cloud.normals.clear();
     cloud.normals.shrink_to_fit();
