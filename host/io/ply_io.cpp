@@ -215,7 +215,7 @@ void store_vertex(const std::string& path, PointCloud& cloud, const VertexColumn
     throw InputError(path + ": vertex " + std::to_string(index) + ": coordinate is NaN or infinite");
   cloud.points.push_back(p.cast<float>());
   if (c.nx < 0 || c.ny < 0 || c.nz < 0) return;
-  Eigen::Vector3f n(float(values[c.nx]), float(values[c.ny]), float(values[c.nz]));
+  Eigen::Vector3f n(static_cast<float>(values[c.nx]), static_cast<float>(values[c.ny]), static_cast<float>(values[c.nz]));
   if (c.sample_stride == 0) cloud.normals.push_back(n);
   else if (index % c.sample_stride == 0) add_oriented_point(cloud.oriented, cloud.points.back(), n);
 }
