@@ -81,7 +81,7 @@ std::vector<double> mesh_creases(const QuadMesh& mesh) {
 
 //! The faces whose surface is farther from the cloud than the quad mesh (see
 //! SurfaceChecks::off_cloud_tolerance), from the 9 samples per face.
-void find_off_cloud_faces(const QuadMesh& mesh, const std::vector<Eigen::Vector3d>& samples,
+void find_off_cloud_faces(const QuadMesh& mesh, const std::vector<int>& distance, const std::vector<Eigen::Vector3d>& samples,
                           const std::vector<double>& to_cloud, const std::vector<double>& flat_to_cloud,
                           double spacing, SurfaceChecks& checks) {
   // Distances to the nearest point jitter by about a point spacing between
@@ -93,8 +93,6 @@ void find_off_cloud_faces(const QuadMesh& mesh, const std::vector<Eigen::Vector3
   constexpr double kOffCloudRelativeSlack = 0.1;
   checks.off_cloud_slack = spacing;
   checks.off_cloud_tolerance = checks.mesh_to_cloud.p95;
-  std::vector<int> distance, nearest;
-  distances_to_irregular(mesh, distance, nearest);
   std::vector<OffCloudSurfaceSite> sites;
   for (size_t f = 0; f < mesh.n_faces(); ++f) {
     size_t worst = f * 9;
@@ -120,7 +118,8 @@ void find_off_cloud_faces(const QuadMesh& mesh, const std::vector<Eigen::Vector3
   checks.off_cloud_sites = std::move(sites);
 }
 
-void measure_distances(const QuadMesh& mesh, const PatchLayout& layout, const std::vector<SurfaceEvaluator>& evaluators,
+void measure_distances(const QuadMesh& mesh, const std::vector<int>& distance, const PatchLayout& layout,
+                       const std::vector<SurfaceEvaluator>& evaluators,
                        const PointCloud* cloud, SurfaceChecks& checks) {
   static constexpr double kAt[3] = {1.0 / 6.0, 0.5, 5.0 / 6.0};
   std::vector<Eigen::Vector3d> samples(mesh.n_faces() * 9), flat_samples(mesh.n_faces() * 9);
@@ -159,13 +158,12 @@ void measure_distances(const QuadMesh& mesh, const PatchLayout& layout, const st
   }
   checks.to_cloud = summarize_distances(to_cloud);
   checks.mesh_to_cloud = summarize_distances(flat_to_cloud);
-  find_off_cloud_faces(mesh, samples, to_cloud, flat_to_cloud, index.median_spacing(), checks);
+  find_off_cloud_faces(mesh, distance, samples, to_cloud, flat_to_cloud, index.median_spacing(), checks);
 }
 
-void measure_seams(const QuadMesh& mesh, const PatchLayout& layout, const std::vector<BSplineSurface>& surfaces,
+void measure_seams(const QuadMesh& mesh, const std::vector<int>& distance, const std::vector<int>& nearest,
+                   const PatchLayout& layout, const std::vector<BSplineSurface>& surfaces,
                    const std::vector<SurfaceEvaluator>& evaluators, SurfaceChecks& checks) {
-  std::vector<int> distance, nearest;
-  distances_to_irregular(mesh, distance, nearest);
   const std::vector<double> crease = mesh_creases(mesh);
   std::map<int, double> worst_at_site;
   for (auto e : mesh.edges()) {
@@ -226,8 +224,11 @@ SurfaceChecks check_surfaces(const QuadMesh& mesh, const PatchLayout& layout, co
     evaluators.emplace_back(s);
     checks.periodic_surfaces += s.periodic_u || s.periodic_v;
   }
-  measure_distances(mesh, layout, evaluators, cloud, checks);
-  measure_seams(mesh, layout, surfaces, evaluators, checks);
+  // Edges to the nearest irregular vertex, for the off-cloud faces and the seams.
+  std::vector<int> distance, nearest;
+  distances_to_irregular(mesh, distance, nearest);
+  measure_distances(mesh, distance, layout, evaluators, cloud, checks);
+  measure_seams(mesh, distance, nearest, layout, surfaces, evaluators, checks);
   return checks;
 }
 
