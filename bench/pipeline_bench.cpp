@@ -22,6 +22,7 @@
 #include "pipeline/fit.h"
 #include "pipeline/prepare.h"
 #include "skeleton/bone_assignment.h"
+#include "skeleton/cloud_skeleton.h"
 #ifdef MCQUAD_WITH_OPENCL
 #include "opencl/opencl_backend.h"
 #endif
@@ -100,6 +101,13 @@ void BM_CellTree(benchmark::State& state) {
 void BM_Radius(benchmark::State& state) {
   Prepared& p = prepared(size_t(state.range(0)), 0);
   for (auto _ : state) benchmark::DoNotOptimize(assign_points_to_bones(p.graph, p.cloud, "knot"));
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(p.cloud.size()));
+}
+
+// The skeleton from the cloud alone (issue 15: 400,000 points in at most 1 s).
+void BM_ExtractSkeleton(benchmark::State& state) {
+  Prepared& p = prepared(size_t(state.range(0)), 0);
+  for (auto _ : state) benchmark::DoNotOptimize(extract_skeleton(p.cloud, "knot"));
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(p.cloud.size()));
 }
 
@@ -192,6 +200,7 @@ BENCHMARK(BM_ReadPly)->Arg(100000)->Arg(413696)->Arg(1000000)->Unit(benchmark::k
 BENCHMARK(BM_SortSpatially)->Arg(100000)->Arg(413696)->Arg(1000000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CellTree)->Arg(100000)->Arg(413696)->Arg(1000000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Radius)->Arg(100000)->Arg(413696)->Arg(1000000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ExtractSkeleton)->Arg(100000)->Arg(413696)->Arg(1000000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_InitialMesh)->Arg(0)->Arg(30000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Refinement)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
 // Backend (0 serial, 1 OpenCL) x cloud points x mesh vertices (0 = default resolution).

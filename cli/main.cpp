@@ -15,6 +15,7 @@
 #include "metrics/mesh_metrics.h"
 #include "pipeline/fit.h"
 #include "pipeline/measure.h"
+#include "pipeline/skeleton_extraction.h"
 #include "pipeline/surfaces.h"
 #include "report/html_report.h"
 #ifdef MCQUAD_WITH_OPENCL
@@ -68,7 +69,9 @@ struct FitCommand {
 
   void add_options(CLI::App* app, bool evolution) {
     app->add_option("POINTS", points, "point cloud (.ply, .xyz, .txt, .csv, .obj, .off)")->required();
-    app->add_option("SKELETON", skeleton, "skeleton (.obj with v/l lines, or CGAL polylines .cgal/.polylines/.txt)")->required();
+    app->add_option("SKELETON", skeleton,
+                    "skeleton (.obj with v/l lines, or CGAL polylines .cgal/.polylines/.txt); none: extracted from the cloud "
+                    "(as by mcquad skeleton)");
     app->add_option("-o,--output", output, "output mesh (.obj, .off, .ply, .om; .stl binary or .stla ASCII, triangulated)")->required();
     app->add_option("--report", report, "write a JSON report here");
     if (evolution)
@@ -169,7 +172,7 @@ struct FitCommand {
   //! The HTML report from what the fit left in memory (the cloud is read again).
   void write_fit_html(const FitResult& result) const {
     PointCloud cloud = read_point_cloud(points);
-    SkeletonData skeleton_data = read_skeleton(skeleton);
+    SkeletonData skeleton_data = result.extracted_skeleton ? *result.extracted_skeleton : read_skeleton(skeleton);
     HtmlReportInput input;
     input.report = &result.report;
     input.final_mesh = &result.mesh;
@@ -212,6 +215,22 @@ int run_generate(const std::string& name, const std::string& directory, const Sh
               shape.cloud.size(), lo.x(), hi.x(), lo.y(), hi.y(), lo.z(), hi.z(), shape.skeleton.nodes.size());
   std::string base = (std::filesystem::path(directory) / name).string();
   std::printf("wrote %s.ply, %s.skeleton.obj, %s.surface.json\n", base.c_str(), base.c_str(), base.c_str());
+  return kExitOk;
+}
+
+int run_skeleton(const std::string& points_path, const std::string& output, const std::string& json_path,
+                 const SkeletonExtractionOptions& options) {
+  check_output_path(output, {"obj"});
+  if (!json_path.empty()) check_output_path(json_path, {"json"});
+  double seconds = 0;
+  ExtractedSkeleton extracted = extract_skeleton_from_file(points_path, options, seconds);
+  nlohmann::json report = skeleton_report(extracted, points_path, seconds);
+  write_skeleton_obj(output, extracted.skeleton);
+  if (!json_path.empty()) write_text_atomically(json_path, report.dump(2) + "\n");
+  std::printf("skeleton: %s (%zu nodes, %zu bones: %d junctions, %d ends, %d independent cycles, %d components) in %.3g s\n",
+              output.c_str(), extracted.skeleton.nodes.size(), extracted.skeleton.edges.size(), report["junctions"].get<int>(),
+              report["ends"].get<int>(), report["independent_cycles"].get<int>(), report["components"].get<int>(), seconds);
+  if (!json_path.empty()) std::printf("report: %s\n", json_path.c_str());
   return kExitOk;
 }
 
@@ -335,6 +354,16 @@ int main(int argc, char** argv) {
   generate_app->add_option("--holes", shape_options.holes, "patches of radius r left without points")
       ->check(CLI::Range(0, 100))->capture_default_str();
 
+  std::string skeleton_points, skeleton_output, skeleton_json;
+  SkeletonExtractionOptions skeleton_options;
+  auto* skeleton_app = app.add_subcommand("skeleton", "a curve skeleton of a point cloud, for fit (docs/SKELETON.md)");
+  skeleton_app->add_option("POINTS", skeleton_points, "point cloud (.ply, .xyz, .txt, .csv, .obj, .off); normals are not needed")->required();
+  skeleton_app->add_option("-o,--output", skeleton_output, "output skeleton (.obj: v and l lines)")->required();
+  skeleton_app->add_option("--report", skeleton_json, "write a JSON report here: every node's position, radius and kind");
+  skeleton_app->add_option("--voxels", skeleton_options.target_voxels,
+                           "voxels the cloud is thinned to (0 = a quarter of the points, at most 40000)")
+      ->check(CLI::Range(size_t(0), size_t(2000000)))->capture_default_str();
+
   app.add_subcommand("devices", "list the OpenCL platforms and devices");
 
   std::string metrics_mesh, metrics_points, metrics_skeleton, metrics_surface, metrics_json;
@@ -381,6 +410,7 @@ int main(int argc, char** argv) {
     if (*fit_app) return fit.run(true);
     if (*init_app) return init.run(false);
     if (*generate_app) return run_generate(shape_name, shape_dir, shape_options);
+    if (*skeleton_app) return run_skeleton(skeleton_points, skeleton_output, skeleton_json, skeleton_options);
     if (app.got_subcommand("devices")) return run_devices();
     if (*surfaces_app) return run_surfaces(surfaces_mesh, surfaces_points, surface_outputs, surfaces_json);
     if (*report_app) {

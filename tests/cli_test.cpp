@@ -7,6 +7,7 @@
 
 #include "core/errors.h"
 #include "helpers.h"
+#include "io/skeleton_io.h"
 
 namespace mcquad {
 namespace {
@@ -29,7 +30,7 @@ CliRun mcquad(const std::string& arguments) {
 
 TEST(Cli, VersionAndHelp) {
   EXPECT_EQ(mcquad("--version").code, 0);
-  for (const char* sub : {"fit", "init", "generate", "devices", "metrics", "surfaces"}) EXPECT_EQ(mcquad(std::string(sub) + " --help").code, 0) << sub;
+  for (const char* sub : {"fit", "init", "generate", "skeleton", "devices", "metrics", "surfaces"}) EXPECT_EQ(mcquad(std::string(sub) + " --help").code, 0) << sub;
   EXPECT_EQ(mcquad("").code, kExitUsage);
   EXPECT_EQ(mcquad("fit a.ply").code, kExitUsage);
 }
@@ -189,6 +190,60 @@ TEST(Cli, SurfacesFromFitAndFromAMesh) {
   CliRun unsupported = mcquad("surfaces " + triangles + " -o " + dir.file("x.step"));
   EXPECT_EQ(unsupported.code, kExitUnsupported) << unsupported.output;
   EXPECT_FALSE(std::filesystem::exists(dir.file("x.step")));
+}
+
+}  // namespace
+}  // namespace mcquad
+
+namespace mcquad {
+namespace {
+
+std::string file_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST(Cli, SkeletonFromTheCloudAloneAndInAFitWithoutSkeleton) {
+  test::TempDir dir;
+  ASSERT_EQ(mcquad("generate t-shape -o " + dir.file("") + " --points 30000").code, 0);
+  std::string points = dir.file("t-shape.ply");
+  CliRun extracted = mcquad("skeleton " + points + " -o " + dir.file("s.obj") + " --report " + dir.file("s.json"));
+  ASSERT_EQ(extracted.code, 0) << extracted.output;
+  EXPECT_NE(extracted.output.find("1 junctions, 3 ends, 0 independent cycles, 1 components"), std::string::npos) << extracted.output;
+  nlohmann::json report = nlohmann::json::parse(file_text(dir.file("s.json")));
+  ASSERT_FALSE(report["nodes"].empty());
+  for (const auto& node : report["nodes"]) EXPECT_NEAR(node["radius"].get<double>(), 1.0, 0.25);
+  // Byte for byte the same on a second run, and the skeleton a fit with none builds on.
+  ASSERT_EQ(mcquad("skeleton " + points + " -o " + dir.file("again.obj")).code, 0);
+  EXPECT_EQ(file_text(dir.file("s.obj")), file_text(dir.file("again.obj")));
+  CliRun fit = mcquad("fit " + points + " -o " + dir.file("fit.obj") + " --backend serial --iterations 3 --write-skeleton " +
+                      dir.file("used.obj") + " --report " + dir.file("fit.json"));
+  ASSERT_EQ(fit.code, 0) << fit.output;
+  nlohmann::json fit_report = nlohmann::json::parse(file_text(dir.file("fit.json")));
+  EXPECT_EQ(fit_report["skeleton_extraction"]["junctions"].get<int>(), 1);
+  EXPECT_EQ(fit_report["inputs"]["skeleton"].get<std::string>(), "the skeleton extracted from " + points);
+  SkeletonData used = read_skeleton(dir.file("used.obj")), alone = read_skeleton(dir.file("s.obj"));
+  EXPECT_EQ(used.edges.size(), alone.edges.size());
+}
+
+TEST(Cli, SkeletonOfABadCloudIsAOneLineError) {
+  test::TempDir dir;
+  std::string few = dir.write("few.xyz", "0 0 0\n1 0 0\n0 1 0\n");
+  CliRun too_few = mcquad("skeleton " + few + " -o " + dir.file("s.obj"));
+  EXPECT_EQ(too_few.code, kExitInput) << too_few.output;
+  EXPECT_NE(too_few.output.find(few + ": 3 points are too few"), std::string::npos) << too_few.output;
+  std::string sheet;
+  for (int i = 0; i < 150; ++i)
+    for (int j = 0; j < 150; ++j) sheet += std::to_string(i * 0.05 + 0.001 * (j % 7)) + " " + std::to_string(j * 0.05) + " 0\n";
+  std::string sheet_path = dir.write("sheet.xyz", sheet);
+  CliRun flat = mcquad("skeleton " + sheet_path + " -o " + dir.file("s.obj"));
+  EXPECT_EQ(flat.code, kExitUnsupported) << flat.output;
+  EXPECT_NE(flat.output.find("the cloud is a sheet"), std::string::npos) << flat.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("s.obj")));
+  CliRun unwritable = mcquad("skeleton " + sheet_path + " -o " + dir.file("no/such/dir/s.obj"));
+  EXPECT_EQ(unwritable.code, kExitOutput) << unwritable.output;
 }
 
 }  // namespace

@@ -10,12 +10,11 @@
 
 namespace mcquad {
 
-//! The cloud's typical point spacing: the median distance from a point to
-//! its nearest neighbour, over a deterministic subsample of about 2000
-//! points (enough for a median). `tree` is any nanoflann index over
-//! `points` with 32-bit indices.
+//! A quantile (0.5: the median) of the distance from a point to its nearest
+//! neighbour, over a deterministic subsample of about 2000 points (enough
+//! for it). `tree` is any nanoflann index over `points` with 32-bit indices.
 template <typename Tree, typename Point>
-double median_neighbour_spacing(const std::vector<Point>& points, const Tree& tree) {
+double neighbour_spacing_quantile(const std::vector<Point>& points, const Tree& tree, double quantile) {
   std::vector<double> gaps;
   size_t stride = std::max<size_t>(1, points.size() / 2000);
   for (size_t i = 0; i < points.size(); i += stride) {
@@ -24,8 +23,15 @@ double median_neighbour_spacing(const std::vector<Point>& points, const Tree& tr
     if (tree.knnSearch(points[i].data(), 2, index, distance2) == 2) gaps.push_back(std::sqrt(double(distance2[1])));
   }
   if (gaps.empty()) return 0.0;
-  std::nth_element(gaps.begin(), gaps.begin() + long(gaps.size() / 2), gaps.end());
-  return gaps[gaps.size() / 2];
+  auto at = gaps.begin() + long(std::min(gaps.size() - 1, size_t(quantile * double(gaps.size()))));
+  std::nth_element(gaps.begin(), at, gaps.end());
+  return *at;
+}
+
+//! The cloud's typical point spacing: the median nearest-neighbour distance.
+template <typename Tree, typename Point>
+double median_neighbour_spacing(const std::vector<Point>& points, const Tree& tree) {
+  return neighbour_spacing_quantile(points, tree, 0.5);
 }
 
 //! Nearest-neighbour index over a vector of 3D points (nanoflann through an
@@ -75,8 +81,9 @@ class PointIndex {
     return indices;
   }
 
-  //! See median_neighbour_spacing.
+  //! See median_neighbour_spacing and neighbour_spacing_quantile.
   double median_spacing() const { return median_neighbour_spacing(adaptor_.points, tree_); }
+  double spacing_quantile(double quantile) const { return neighbour_spacing_quantile(adaptor_.points, tree_, quantile); }
 
  private:
   struct Adaptor {

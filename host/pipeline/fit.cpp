@@ -20,6 +20,7 @@
 #include "mesh/mesh_arrays.h"
 #include "pipeline/make_backend.h"
 #include "pipeline/prepare.h"
+#include "pipeline/skeleton_extraction.h"
 #include "pipeline/surfaces.h"
 #include "surfaces/cad_model.h"
 #include "metrics/mesh_metrics.h"
@@ -154,6 +155,19 @@ void check_fit_options(const FitOptions& options) {
 FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& timer) {
   PointCloud& cloud = input.cloud;
   const std::string& points_path = input.points_name;
+  std::optional<nlohmann::json> extraction_report;
+  std::optional<SkeletonData> extracted;
+  if (input.skeleton.nodes.empty() && input.skeleton_name.empty()) {
+    // Before the points are sorted: the same cloud order, hence the same
+    // skeleton, as `mcquad skeleton` reading the same file.
+    auto started = std::chrono::steady_clock::now();
+    ExtractedSkeleton skeleton = timer.run("extract_skeleton", [&] { return extract_skeleton(cloud, points_path); });
+    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    extraction_report = skeleton_report(skeleton, points_path, seconds);
+    input.skeleton = skeleton.skeleton;
+    extracted = std::move(skeleton.skeleton);
+    input.skeleton_name = "the skeleton extracted from " + points_path;
+  }
   const std::string& skeleton_path = input.skeleton_name;
   // The scan's normals judge the mesh's orientation at the end; a sample of
   // them is enough, and the rest need not be sorted and carried along.
@@ -175,6 +189,7 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
     write_skeleton_obj(options.construction_skeleton, built);
   }
   FitResult result;
+  result.extracted_skeleton = std::move(extracted);
   // OpenMesh meshes have no move operations, so this is a copy; the original
   // goes at once (228 MiB for a mesh of 2.26 million vertices).
   result.mesh = initial.mesh;
@@ -198,6 +213,7 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
                       {"skeleton_nodes", graph.node_count()}, {"skeleton_bones", graph.edges.size()},
                       {"skeleton_components", graph.component_count}};
   report["parameters"] = parameters_json(options, parameters.epsilon, median_radius, leaf_size);
+  if (extraction_report) report["skeleton_extraction"] = std::move(*extraction_report);
   report["initial_mesh"] = {{"open_ends", initial.open_ends}, {"refinement_levels", initial.refinement_levels},
                             {"statistics", to_json(mesh_statistics(result.mesh))}};
   if (cells.cell_count() > 0)
@@ -283,7 +299,7 @@ FitResult run_fit(const std::string& points_path, const std::string& skeleton_pa
   input.points_name = points_path;
   input.skeleton_name = skeleton_path;
   input.cloud = timer.run("read_points", [&] { return read_point_cloud(points_path, false, kOrientedSample); });
-  input.skeleton = timer.run("read_skeleton", [&] { return read_skeleton(skeleton_path); });
+  if (!skeleton_path.empty()) input.skeleton = timer.run("read_skeleton", [&] { return read_skeleton(skeleton_path); });
   return fit_loaded(std::move(input), options, timer);
 }
 

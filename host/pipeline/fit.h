@@ -31,6 +31,8 @@ struct FitOptions {
 //! What a fit starts from, already in memory (the Python package passes
 //! numpy arrays): the cloud, the skeleton as read, and the names that error
 //! messages and the report give them (a file's path, or a description).
+//! A skeleton with no nodes and no name is extracted from the cloud first
+//! (skeleton/cloud_skeleton.h).
 struct FitInput {
   PointCloud cloud;
   SkeletonData skeleton;
@@ -43,12 +45,14 @@ struct FitResult {
   QuadMesh initial_mesh;           //!< when FitOptions::keep_initial_mesh
   nlohmann::json report;
   std::optional<Verdict> verdict;  //!< when measured (mcquad fit; not mcquad init)
+  std::optional<SkeletonData> extracted_skeleton;  //!< when none was given
 };
 
 //! The whole pipeline: read, skeleton graph, radii, initial mesh, cells,
 //! Monte Carlo evolution, metrics. The report holds the parameters as used,
 //! per-iteration error level and time, backend and device, stage timings,
-//! mesh statistics and quality metrics.
+//! mesh statistics and quality metrics. An empty `skeleton_path`: the
+//! skeleton is extracted from the cloud (report: "skeleton_extraction").
 FitResult run_fit(const std::string& points_path, const std::string& skeleton_path, const FitOptions& options);
 
 //! The same pipeline from a cloud and a skeleton in memory: for the same

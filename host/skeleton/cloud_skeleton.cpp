@@ -1,0 +1,749 @@
+#include "skeleton/cloud_skeleton.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <set>
+
+#include "core/errors.h"
+#include "core/point_index.h"
+#include "core/union_find.h"
+#include "skeleton/level_set_graph.h"
+#include "skeleton/voxel_graph.h"
+
+namespace mcquad {
+namespace {
+
+constexpr size_t kFewestPoints = 200;
+constexpr size_t kMostVoxels = 40000;
+// A voxel a few times the nearest-neighbour spacing holds a few points even
+// where the scan is sparsest (random points leave gaps several spacings wide).
+constexpr double kSpacingsPerVoxel = 4.5;
+// A spur whose tip is nearer its junction than this many junction radii is a
+// bump (noise, a crease, the root's own cap), not a limb.
+constexpr double kSpurRadii = 1.8;
+// Or whose tip rises less than this many above the band where it splits off
+// (fronts meeting on a loop leave such bulges; an open limb's rim rises its
+// length above its junction, a capped one a radius more).
+constexpr double kSpurRise = 1.5;
+// A cycle spanning less geodesic distance than this many tube radii is a
+// split and merge around a hole or a noisy patch, not a handle.
+constexpr double kCycleRadii = 2.0;
+// Pieces whose widest angular gap exceeds this are arcs, not rings.
+constexpr double kArcGap = M_PI / 2;
+
+//! The level-set graph as an editable graph: nodes die, edges go.
+struct WorkGraph {
+  std::vector<std::set<int>> adjacent;
+  std::vector<bool> alive;
+
+  explicit WorkGraph(const LevelSetGraph& graph) : adjacent(graph.nodes.size()), alive(graph.nodes.size(), true) {
+    for (auto [a, b] : graph.edges) {
+      adjacent[size_t(a)].insert(b);
+      adjacent[size_t(b)].insert(a);
+    }
+  }
+  int degree(int v) const { return int(adjacent[size_t(v)].size()); }
+  void remove_edge(int a, int b) {
+    adjacent[size_t(a)].erase(b);
+    adjacent[size_t(b)].erase(a);
+  }
+  void remove_node(int v) {
+    for (int w : std::vector<int>(adjacent[size_t(v)].begin(), adjacent[size_t(v)].end())) remove_edge(v, w);
+    alive[size_t(v)] = false;
+  }
+};
+
+//! A chain of level-set nodes between two key nodes (degree other than 2),
+//! both included; a closed chain starts and ends at the same node.
+struct Chain {
+  std::vector<int> nodes;
+  bool closed() const { return nodes.front() == nodes.back(); }
+};
+
+struct Extraction {
+  const VoxelGraph& voxels;
+  const LevelSetGraph& levels;
+  const PointIndex<double>& surface;  // over surface_points
+  const std::vector<Eigen::Vector3d>& surface_points;  // the kept voxels' centroids
+  double band_width;
+  WorkGraph work;
+  std::vector<Eigen::Vector3d> position;  // per level-set node, moved as the skeleton is cleaned
+
+  //! Distance from x to the surface: the radius of the ball inscribed there.
+  double inscribed_radius(const Eigen::Vector3d& x) const { return std::sqrt(surface.nearest(x).second); }
+  const LevelSetNode& node(int v) const { return levels.nodes[size_t(v)]; }
+};
+
+double chain_length(const Extraction& x, const std::vector<int>& nodes) {
+  double length = 0;
+  for (size_t k = 1; k < nodes.size(); ++k) length += (x.position[size_t(nodes[k])] - x.position[size_t(nodes[k - 1])]).norm();
+  return length;
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0;
+  std::nth_element(values.begin(), values.begin() + long(values.size() / 2), values.end());
+  return values[values.size() / 2];
+}
+
+//! Removes, for every cycle of the spanning tree (breadth-first, in node
+//! order) that spans too little geodesic distance, its closing edge.
+void remove_short_cycles(Extraction& x, double band_width) {
+  size_t n = x.work.adjacent.size();
+  std::vector<int> parent(n, -2);
+  std::vector<std::array<int, 2>> closing;
+  for (size_t start = 0; start < n; ++start) {
+    if (!x.work.alive[start] || parent[start] != -2) continue;
+    parent[start] = -1;
+    std::vector<int> queue{int(start)};
+    for (size_t head = 0; head < queue.size(); ++head) {
+      int v = queue[head];
+      for (int w : x.work.adjacent[size_t(v)]) {
+        if (parent[size_t(w)] == -2) {
+          parent[size_t(w)] = v;
+          queue.push_back(w);
+        } else if (w != parent[size_t(v)] && v < w) {
+          closing.push_back({v, w});
+        }
+      }
+    }
+  }
+  for (auto [a, b] : closing) {
+    std::vector<int> up_a, up_b;
+    for (int v = a; v >= 0; v = parent[size_t(v)]) up_a.push_back(v);
+    std::set<int> on_a(up_a.begin(), up_a.end());
+    int meet = b;
+    for (; meet >= 0 && !on_a.count(meet); meet = parent[size_t(meet)]) up_b.push_back(meet);
+    if (meet < 0) continue;
+    int lowest = std::numeric_limits<int>::max(), highest = std::numeric_limits<int>::min();
+    std::vector<double> radii;  // the median: a cycle through a fat body has a few huge bands
+    auto visit = [&](int v) {
+      lowest = std::min(lowest, x.node(v).band);
+      highest = std::max(highest, x.node(v).band);
+      radii.push_back(x.node(v).radius);
+    };
+    for (int v : up_a) {
+      visit(v);
+      if (v == meet) break;
+    }
+    for (int v : up_b) visit(v);
+    if (double(highest - lowest + 1) * band_width < kCycleRadii * median(radii)) x.work.remove_edge(a, b);
+  }
+}
+
+//! From a node of degree 1, the nodes up to the first of another degree (included).
+std::vector<int> walk_from_end(const Extraction& x, int end) {
+  std::vector<int> path{end};
+  int previous = -1, current = end;
+  while (true) {
+    int next = -1;
+    for (int w : x.work.adjacent[size_t(current)])
+      if (w != previous) next = w;
+    if (next < 0) break;
+    path.push_back(next);
+    if (x.work.degree(next) != 2) break;
+    previous = current;
+    current = next;
+  }
+  return path;
+}
+
+//! The radius of a junction: the inscribed ball at its node or the widest of
+//! its limbs next to it (rings two to eight along each), whichever is larger.
+double junction_radius(const Extraction& x, const std::vector<std::vector<int>>& limbs, const Eigen::Vector3d& at) {
+  double radius = x.inscribed_radius(at);
+  for (const auto& nodes : limbs) {
+    std::vector<double> radii;
+    for (size_t k = 2; k < std::min<size_t>(nodes.size() - 1, 9); ++k) radii.push_back(x.node(nodes[k]).radius);
+    radius = std::max(radius, median(radii));
+  }
+  return radius;
+}
+
+//! The radius a spur is judged by at its junction: the inscribed ball there,
+//! or the thinnest of the junction's other limbs (the median of rings two to
+//! eight along each), whichever is larger. Not the widest: next to a split
+//! the rings can be two limbs wide.
+double spur_radius(const Extraction& x, int junction, int spur_first) {
+  double thinnest = std::numeric_limits<double>::max();
+  for (int first : x.work.adjacent[size_t(junction)]) {
+    if (first == spur_first) continue;
+    std::vector<double> radii;
+    int previous = junction, current = first;
+    for (int k = 1; k <= 8; ++k) {
+      if (k >= 2) radii.push_back(x.node(current).radius);
+      if (x.work.degree(current) != 2) break;
+      int next = *x.work.adjacent[size_t(current)].begin();
+      if (next == previous) next = *x.work.adjacent[size_t(current)].rbegin();
+      previous = current;
+      current = next;
+    }
+    if (!radii.empty()) thinnest = std::min(thinnest, median(radii));
+  }
+  double inscribed = x.inscribed_radius(x.position[size_t(junction)]);
+  return thinnest == std::numeric_limits<double>::max() ? inscribed : std::max(inscribed, thinnest);
+}
+
+//! Prunes spurs (an end whose tip is within kSpurRadii junction radii of its
+//! junction), the shortest at each junction first, until none is left.
+void prune_spurs(Extraction& x) {
+  for (bool changed = true; changed;) {
+    changed = false;
+    std::map<int, std::pair<double, std::vector<int>>> shortest;  // per junction
+    for (size_t v = 0; v < x.work.adjacent.size(); ++v) {
+      if (!x.work.alive[v] || x.work.degree(int(v)) != 1) continue;
+      std::vector<int> path = walk_from_end(x, int(v));
+      int junction = path.back();
+      if (x.work.degree(junction) < 3) continue;
+      // Short either way: straight from the junction, or in geodesic distance
+      // from where the bands split (a bulge at a corner can sit far from the
+      // split yet rise little above it).
+      double reach = (x.position[v] - x.position[size_t(junction)]).norm();
+      double rise = std::abs(x.node(int(v)).band - x.node(junction).band) * x.band_width;
+      double radius = spur_radius(x, junction, path[path.size() - 2]);
+      if (reach >= kSpurRadii * radius && (rise >= kSpurRise * radius || reach >= 2.5 * radius)) continue;
+      auto found = shortest.find(junction);
+      if (found == shortest.end() || reach < found->second.first) shortest[junction] = {reach, path};
+    }
+    for (auto& [junction, spur] : shortest) {
+      for (size_t k = 0; k + 1 < spur.second.size(); ++k) x.work.remove_node(spur.second[k]);
+      changed = true;
+    }
+  }
+}
+
+std::vector<Chain> trace_chains(const Extraction& x) {
+  std::vector<Chain> chains;
+  std::set<std::array<int, 2>> used;  // directed first steps
+  size_t n = x.work.adjacent.size();
+  std::vector<bool> visited(n, false);
+  auto walk = [&](int key, int first) {
+    Chain chain{{key, first}};
+    visited[size_t(key)] = visited[size_t(first)] = true;
+    int previous = key, current = first;
+    while (x.work.degree(current) == 2 && current != key) {
+      int next = *x.work.adjacent[size_t(current)].begin();
+      if (next == previous) next = *x.work.adjacent[size_t(current)].rbegin();
+      previous = current;
+      current = next;
+      chain.nodes.push_back(current);
+      visited[size_t(current)] = true;
+    }
+    used.insert({chain.nodes.back(), chain.nodes[chain.nodes.size() - 2]});
+    return chain;
+  };
+  for (size_t v = 0; v < n; ++v) {
+    if (!x.work.alive[v] || x.work.degree(int(v)) == 2 || x.work.degree(int(v)) == 0) continue;
+    for (int w : x.work.adjacent[v]) {
+      if (used.count({int(v), w})) continue;
+      used.insert({int(v), w});
+      chains.push_back(walk(int(v), w));
+    }
+  }
+  for (size_t v = 0; v < n; ++v) {  // pure loops of regular nodes
+    if (!x.work.alive[v] || visited[v] || x.work.degree(int(v)) != 2) continue;
+    chains.push_back(walk(int(v), *x.work.adjacent[v].begin()));
+  }
+  return chains;
+}
+
+//! Moves every inner ring of a chain onto the centre of the tube's cross
+//! section there: a band of geodesic distance crosses a tube at a slant and
+//! warped where a limb branches off or the tube bends, and its centre leans;
+//! the slice perpendicular to the chain does not. Twice, since the chain's
+//! tangent improves with its nodes.
+void centre_on_cross_sections(Extraction& x, const std::vector<Chain>& chains) {
+  const double half_slab = 0.75 * x.voxels.voxel_size;
+  const VoxelGraph& graph = x.voxels;
+  std::vector<Eigen::Vector3d> slice;
+  std::vector<uint32_t> reached;
+  std::vector<char> seen(graph.size(), 0);
+  for (int pass = 0; pass < 2; ++pass) {
+    for (const auto& chain : chains) {
+      const std::vector<int>& nodes = chain.nodes;
+      std::vector<Eigen::Vector3d> moved(nodes.size());
+      for (size_t k = 1; k + 1 < nodes.size(); ++k) {
+        const Eigen::Vector3d& p = x.position[size_t(nodes[k])];
+        moved[k] = p;
+        size_t back = k >= 2 ? k - 2 : k - 1, ahead = std::min(k + 2, nodes.size() - 1);
+        Eigen::Vector3d tangent = x.position[size_t(nodes[ahead])] - x.position[size_t(nodes[back])];
+        double r = x.node(nodes[k]).radius;
+        if (tangent.norm() <= 0 || r <= 0) continue;
+        tangent.normalize();
+        // The surface around this ring only: what the ring's own voxels reach
+        // within the ball, not another tube passing close by.
+        const double ball2 = (1.6 * r) * (1.6 * r);
+        reached.clear();
+        for (uint32_t v : x.node(nodes[k]).voxels)
+          if ((graph.centroids[v] - p).squaredNorm() <= ball2 && !seen[v]) {
+            seen[v] = 1;
+            reached.push_back(v);
+          }
+        for (size_t head = 0; head < reached.size(); ++head)
+          for (uint32_t e = graph.offsets[reached[head]]; e < graph.offsets[reached[head] + 1]; ++e) {
+            uint32_t w = graph.neighbours[e];
+            if (!seen[w] && (graph.centroids[w] - p).squaredNorm() <= ball2) {
+              seen[w] = 1;
+              reached.push_back(w);
+            }
+          }
+        slice.clear();
+        for (uint32_t v : reached) {
+          seen[v] = 0;
+          if (std::abs((graph.centroids[v] - p).dot(tangent)) <= half_slab) slice.push_back(graph.centroids[v]);
+        }
+        RingFit ring = fit_ring(slice);
+        Eigen::Vector3d shift = ring.centre - p;
+        shift -= shift.dot(tangent) * tangent;  // stay in the slice
+        if (ring.widest_gap <= kArcGap && shift.norm() < 0.5 * r) moved[k] = p + shift;
+      }
+      for (size_t k = 1; k + 1 < nodes.size(); ++k) x.position[size_t(nodes[k])] = moved[k];
+    }
+  }
+}
+
+struct Line {
+  Eigen::Vector3d point;
+  Eigen::Vector3d direction;  //!< unit, pointing away from the key node the line was fitted from
+};
+
+//! The axis of a chain near one of its ends (`nodes` start there): the
+//! tangent, at the first ring whose distance from `from` is at least `near`,
+//! of a parabola through the ring centres up to `far` (a line through fewer
+//! than four), arcs left out. The tangent rather than a mean line, so that a
+//! limb curving away from its junction does not throw the junction off.
+//! None when fewer than two rings qualify.
+bool fit_axis(const Extraction& x, const std::vector<int>& nodes, const Eigen::Vector3d& from, double near, double far,
+              Line& line) {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<double> along;
+  double walked = 0;
+  for (size_t k = 1; k + 1 < nodes.size(); ++k) {
+    const Eigen::Vector3d& p = x.position[size_t(nodes[k])];
+    double distance = (p - from).norm();
+    if (distance > far) break;
+    if (distance < near || x.node(nodes[k]).widest_gap > kArcGap) continue;
+    if (!points.empty()) walked += (p - points.back()).norm();
+    points.push_back(p);
+    along.push_back(walked);
+  }
+  if (points.size() < 2 || walked <= 0) return false;
+  // A parabola only where the rings bend away from their mean line.
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& p : points) mean += p;
+  mean /= double(points.size());
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (const auto& p : points) covariance += (p - mean) * (p - mean).transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);
+  double off_line = std::sqrt(std::max(0.0, eigen.eigenvalues()(0) + eigen.eigenvalues()(1)) / double(points.size()));
+  double ring_radius = x.node(nodes[1]).radius;
+  if (points.size() < 4 || off_line < 0.05 * ring_radius) {
+    Eigen::Vector3d direction = eigen.eigenvectors().col(2);
+    if (direction.dot(points.back() - points.front()) < 0) direction = -direction;
+    line = {mean, direction};
+    return true;
+  }
+  int terms = 3;
+  Eigen::MatrixXd basis(points.size(), terms);
+  Eigen::MatrixXd values(points.size(), 3);
+  for (size_t k = 0; k < points.size(); ++k) {
+    double s = along[k] / walked;  // scaled to [0, 1] for a well-conditioned fit
+    basis(long(k), 0) = 1;
+    basis(long(k), 1) = s;
+    if (terms == 3) basis(long(k), 2) = s * s;
+    values.row(long(k)) = points[k].transpose();
+  }
+  Eigen::MatrixXd coefficients = basis.colPivHouseholderQr().solve(values);
+  Eigen::Vector3d direction = coefficients.row(1).transpose();
+  if (!direction.allFinite() || direction.norm() <= 0) return false;
+  line = {coefficients.row(0).transpose(), direction.normalized()};
+  return true;
+}
+
+//! The point nearest all lines in the least-squares sense, pulled weakly
+//! toward `start` (so that nearly parallel limbs do not throw it far).
+Eigen::Vector3d nearest_to_lines(const std::vector<Line>& lines, const Eigen::Vector3d& start) {
+  const double pull = 0.05;
+  Eigen::Matrix3d a = pull * Eigen::Matrix3d::Identity();
+  Eigen::Vector3d b = pull * start;
+  for (const auto& line : lines) {
+    Eigen::Matrix3d across = Eigen::Matrix3d::Identity() - line.direction * line.direction.transpose();
+    a += across;
+    b += across * line.point;
+  }
+  return a.ldlt().solve(b);
+}
+
+std::vector<int> reversed(std::vector<int> nodes) {
+  std::reverse(nodes.begin(), nodes.end());
+  return nodes;
+}
+
+//! Junctions: nearby junction nodes of one branching region merged, each
+//! moved to where its limbs' axes meet, and the rings inside it dropped.
+void place_junctions(Extraction& x, std::vector<Chain>& chains) {
+  size_t n = x.work.adjacent.size();
+  auto is_junction = [&](int v) { return x.work.degree(v) >= 3; };
+
+  // Each chain seen from each of its junction ends.
+  struct Limb {
+    size_t chain;
+    bool from_front;
+    std::vector<int> nodes;  // starting at the junction
+  };
+  auto limbs_of = [&](const std::set<int>& cluster, const std::set<size_t>& internal) {
+    std::vector<Limb> limbs;
+    for (size_t c = 0; c < chains.size(); ++c) {
+      if (internal.count(c)) continue;
+      if (cluster.count(chains[c].nodes.front())) limbs.push_back({c, true, chains[c].nodes});
+      if (cluster.count(chains[c].nodes.back())) limbs.push_back({c, false, reversed(chains[c].nodes)});
+    }
+    return limbs;
+  };
+  // The axes of the limbs, each fitted from its own junction node. Limbs
+  // shorter than two radii (links to a neighbouring junction node of the
+  // same region, mostly) have no axis worth the name.
+  auto limb_axes = [&](const std::vector<Limb>& limbs, double r) {
+    std::vector<Line> lines;
+    size_t long_limbs = 0;
+    for (const auto& limb : limbs) long_limbs += chain_length(x, limb.nodes) >= 2 * r;
+    for (const auto& limb : limbs) {
+      if (long_limbs >= 2 && chain_length(x, limb.nodes) < 2 * r) continue;
+      const Eigen::Vector3d& from = x.position[size_t(limb.nodes.front())];
+      Line line;
+      if (fit_axis(x, limb.nodes, from, r, 3 * r, line) || fit_axis(x, limb.nodes, from, 0.5 * r, 5 * r, line))
+        lines.push_back(line);
+    }
+    return lines;
+  };
+  // Where the axes of a narrow fork meet can be several radii from where its
+  // bands split; beyond that, or outside the body, they are not axes.
+  auto meeting_point = [&](const std::vector<Line>& lines, const Eigen::Vector3d& start, double r) {
+    if (lines.size() < 2) return start;
+    Eigen::Vector3d meet = nearest_to_lines(lines, start);
+    return (meet - start).norm() < 4 * r && x.inscribed_radius(meet) >= 0.5 * r ? meet : start;
+  };
+  auto farthest_axis = [](const std::vector<Line>& lines, const Eigen::Vector3d& p) {
+    double farthest = 0;
+    for (const auto& line : lines) {
+      Eigen::Vector3d d = p - line.point;
+      farthest = std::max(farthest, (d - d.dot(line.direction) * line.direction).norm());
+    }
+    return farthest;
+  };
+
+  UnionFind regions(n);
+  std::vector<double> radius(n, 0);
+  for (size_t v = 0; v < n; ++v) {
+    if (!x.work.alive[v] || !is_junction(int(v))) continue;
+    std::vector<std::vector<int>> limb_nodes;
+    for (const auto& limb : limbs_of({int(v)}, {})) limb_nodes.push_back(limb.nodes);
+    radius[v] = junction_radius(x, limb_nodes, x.position[v]);
+  }
+  // Two junction nodes joined by a short chain are one branching region when
+  // the axes of all their other limbs pass through one point (within half a
+  // radius); two junctions a short bone apart (the double-junction shape)
+  // have axes meeting at two points.
+  for (size_t c = 0; c < chains.size(); ++c) {
+    int a = chains[c].nodes.front(), b = chains[c].nodes.back();
+    if (a == b || !is_junction(a) || !is_junction(b)) continue;
+    double r = std::max(radius[size_t(a)], radius[size_t(b)]);
+    double length = chain_length(x, chains[c].nodes);
+    if (length >= 4 * r) continue;
+    std::vector<Line> lines = limb_axes(limbs_of({a, b}, {c}), r);
+    Eigen::Vector3d middle = 0.5 * (x.position[size_t(a)] + x.position[size_t(b)]);
+    Eigen::Vector3d meet = lines.size() >= 2 ? nearest_to_lines(lines, middle) : middle;
+    bool one_point = lines.size() >= 2 && farthest_axis(lines, meet) < 0.5 * r && (meet - middle).norm() < 0.5 * length + r;
+    if (length < 0.5 * r || one_point) regions.join(size_t(a), size_t(b));
+  }
+  std::map<int, std::set<int>> clusters;
+  for (size_t v = 0; v < n; ++v)
+    if (x.work.alive[v] && is_junction(int(v))) clusters[int(regions.find(v))].insert(int(v));
+
+  std::set<size_t> dropped;
+  for (auto& [leader, members] : clusters) {
+    double r = 0;
+    Eigen::Vector3d start = Eigen::Vector3d::Zero();
+    for (int v : members) {
+      r = std::max(r, radius[size_t(v)]);
+      start += x.position[size_t(v)];
+    }
+    start /= double(members.size());
+    std::set<size_t> internal;
+    for (size_t c = 0; c < chains.size(); ++c)
+      if (members.count(chains[c].nodes.front()) && members.count(chains[c].nodes.back()) &&
+          (members.size() > 1 || chains[c].closed()) && chain_length(x, chains[c].nodes) < 2 * r)
+        internal.insert(c);
+    std::vector<Limb> limbs = limbs_of(members, internal);
+    Eigen::Vector3d centre = meeting_point(limb_axes(limbs, r), start, r);
+    // Every member becomes the leader; the leader moves to the centre.
+    x.position[size_t(leader)] = centre;
+    for (size_t c : internal) dropped.insert(c);
+    for (auto& chain : chains) {
+      if (members.count(chain.nodes.front())) chain.nodes.front() = leader;
+      if (members.count(chain.nodes.back())) chain.nodes.back() = leader;
+    }
+    // Drop the rings inside the junction: those not at least 0.75 r out along
+    // their limb or within 1.5 r of its centre (the crotch bends them).
+    for (const auto& limb : limbs) {
+      std::vector<int>& nodes = chains[limb.chain].nodes;
+      Line axis;
+      bool has_axis = fit_axis(x, limb.nodes, start, r, 3 * r, axis) || fit_axis(x, limb.nodes, start, 0.5 * r, 5 * r, axis);
+      Eigen::Vector3d out = has_axis ? axis.direction : (x.position[size_t(limb.nodes.back())] - centre).normalized();
+      size_t inner = 1;
+      auto inside = [&](const Eigen::Vector3d& p) { return (p - centre).dot(out) < 0.75 * r || (p - centre).norm() < 1.5 * r; };
+      while (inner + 1 < limb.nodes.size() && inside(x.position[size_t(limb.nodes[inner])])) ++inner;
+      // limb.nodes[1 .. inner) are inside; erase them from the chain's matching end.
+      size_t count = std::min(inner - 1, nodes.size() - 2);  // the other end may have been trimmed already
+      if (count == 0 || nodes.size() < 3) continue;
+      if (limb.from_front)
+        nodes.erase(nodes.begin() + 1, nodes.begin() + 1 + long(count));
+      else
+        nodes.erase(nodes.end() - 1 - long(count), nodes.end() - 1);
+    }
+  }
+  std::vector<Chain> kept;
+  for (size_t c = 0; c < chains.size(); ++c)
+    if (!dropped.count(c)) kept.push_back(std::move(chains[c]));
+  chains = std::move(kept);
+}
+
+//! Moves an end node from the tip's last ring to the axis, one tube radius
+//! in from a capped tip (where a capsule's end sits) or at an open rim.
+void place_end(Extraction& x, std::vector<int>& nodes) {  // nodes start at the end
+  std::vector<double> radii;
+  const Eigen::Vector3d tip_ring = x.position[size_t(nodes.front())];
+  for (size_t k = 1; k + 1 < nodes.size(); ++k) {
+    if ((x.position[size_t(nodes[k])] - tip_ring).norm() > 6 * x.node(nodes[k]).radius) break;
+    if (x.node(nodes[k]).widest_gap <= kArcGap) radii.push_back(x.node(nodes[k]).radius);
+  }
+  double r = median(radii);
+  Line axis;
+  if (r <= 0 || !(fit_axis(x, nodes, tip_ring, r, 3 * r, axis) || fit_axis(x, nodes, tip_ring, 0.3 * r, 4 * r, axis))) return;
+  Eigen::Vector3d out = -axis.direction;
+  // The tip: the farthest voxel along the axis among the rings near the end.
+  std::vector<Eigen::Vector3d> near_tip;
+  for (int v : nodes) {
+    if ((x.position[size_t(v)] - tip_ring).norm() > 2 * r) break;
+    for (uint32_t voxel : x.node(v).voxels) near_tip.push_back(x.voxels.centroids[voxel]);
+  }
+  double tip = -std::numeric_limits<double>::max();
+  for (const auto& p : near_tip) tip = std::max(tip, (p - axis.point).dot(out));
+  double spread = 0;
+  int in_slab = 0;
+  for (const auto& p : near_tip) {
+    double along = (p - axis.point).dot(out);
+    if (along < tip - 0.3 * r) continue;
+    spread += (p - axis.point - along * out).norm();
+    ++in_slab;
+  }
+  bool open = in_slab > 0 && spread / in_slab > 0.75 * r;
+  double end = open ? tip : tip - r;
+  // Drop the rings past (or within half a radius of) the new end.
+  size_t keep_from = 1;
+  while (keep_from + 1 < nodes.size() && (x.position[size_t(nodes[keep_from])] - axis.point).dot(out) > end - 0.5 * r) ++keep_from;
+  nodes.erase(nodes.begin() + 1, nodes.begin() + long(keep_from));
+  x.position[size_t(nodes.front())] = axis.point + end * out;
+}
+
+//! Douglas-Peucker on a chain's node positions, tolerance a tenth of its
+//! median ring radius; at least `fewest_inner` inner nodes are kept (a loop
+//! needs two, a second chain between the same two nodes one).
+std::vector<int> thin_chain(const Extraction& x, const std::vector<int>& nodes, size_t fewest_inner) {
+  std::vector<double> radii;
+  for (int v : nodes) radii.push_back(x.node(v).radius);
+  double tolerance = 0.1 * median(radii);
+  std::vector<bool> keep(nodes.size(), false);
+  keep.front() = keep.back() = true;
+  std::function<void(size_t, size_t)> split = [&](size_t first, size_t last) {
+    if (last <= first + 1) return;
+    const Eigen::Vector3d& a = x.position[size_t(nodes[first])];
+    const Eigen::Vector3d& b = x.position[size_t(nodes[last])];
+    double worst = -1;
+    size_t worst_at = first;
+    for (size_t k = first + 1; k < last; ++k) {
+      const Eigen::Vector3d& p = x.position[size_t(nodes[k])];
+      Eigen::Vector3d ab = b - a;
+      double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+      double d = (p - a - t * ab).norm();
+      if (d > worst) {
+        worst = d;
+        worst_at = k;
+      }
+    }
+    if (worst > tolerance) {
+      keep[worst_at] = true;
+      split(first, worst_at);
+      split(worst_at, last);
+    }
+  };
+  split(0, nodes.size() - 1);
+  size_t inner = size_t(std::count(keep.begin() + 1, keep.end() - 1, true));
+  for (size_t k = 1; inner < fewest_inner && k <= fewest_inner && nodes.size() > 2; ++k) {
+    size_t at = k * (nodes.size() - 1) / (fewest_inner + 1);
+    if (at > 0 && at + 1 < nodes.size() && !keep[at]) {
+      keep[at] = true;
+      ++inner;
+    }
+  }
+  std::vector<int> thinned;
+  for (size_t k = 0; k < nodes.size(); ++k)
+    if (keep[k]) thinned.push_back(nodes[k]);
+  return thinned;
+}
+
+//! Fraction (by voxels) of the level-set pieces that are arcs rather than
+//! rings: most of a sheet's, few of a tube's (rims and holes make some).
+double arc_fraction(const LevelSetGraph& levels) {
+  size_t arcs = 0, all = 0;
+  for (const auto& node : levels.nodes) {
+    if (node.voxels.size() < 6) continue;
+    all += node.voxels.size();
+    if (node.widest_gap > 2 * M_PI / 3) arcs += node.voxels.size();
+  }
+  return all ? double(arcs) / double(all) : 0.0;
+}
+
+//! A piece of skeleton all of whose nodes' balls lie within its widest one
+//! (grown by a half; the widest sought along the bones, not only at nodes):
+//! a ball or a stubby lump, not tubes. A limb's end reaches at least a
+//! limb's radius beyond the body's ball.
+bool is_a_blob(const Extraction& x, const ExtractedSkeleton& extracted) {
+  const auto& nodes = extracted.skeleton.nodes;
+  UnionFind pieces(nodes.size());
+  for (auto [a, b] : extracted.skeleton.edges) pieces.join(size_t(a), size_t(b));
+  auto find = [&](int v) { return pieces.find(size_t(v)); };
+  std::map<size_t, std::pair<double, Eigen::Vector3d>> widest;  // per piece: radius and centre of its widest ball
+  for (auto [a, b] : extracted.skeleton.edges)
+    for (int k = 0; k <= 10; ++k) {
+      Eigen::Vector3d p = nodes[size_t(a)] + (nodes[size_t(b)] - nodes[size_t(a)]) * (k / 10.0);
+      double radius = x.inscribed_radius(p);
+      auto [it, inserted] = widest.try_emplace(find(a), radius, p);
+      if (radius > it->second.first) it->second = {radius, p};
+    }
+  for (const auto& [root, ball] : widest) {
+    double reach = 0;
+    for (size_t v = 0; v < nodes.size(); ++v)
+      if (find(int(v)) == root) reach = std::max(reach, (nodes[v] - ball.second).norm() + extracted.radii[v]);
+    if (reach <= 1.5 * ball.first) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+ExtractedSkeleton extract_skeleton(const PointCloud& cloud, const std::string& source,
+                                   const SkeletonExtractionOptions& options) {
+  if (cloud.size() < kFewestPoints)
+    throw InputError(source + ": " + std::to_string(cloud.size()) + " points are too few to extract a skeleton from (at least " +
+                     std::to_string(kFewestPoints) + ")");
+  ExtractedSkeleton result;
+  size_t target = options.target_voxels ? options.target_voxels : std::min(kMostVoxels, cloud.size() / 4);
+  // Fine enough for the target count, coarse enough that the sparsest part
+  // of the scan stays one connected sheet.
+  double voxel_size = std::max(voxel_size_for(cloud.points, target), kSpacingsPerVoxel * sparse_spacing(cloud.points));
+  VoxelGraph voxels = build_voxel_graph(cloud.points, voxel_size);
+  result.voxel_size = voxels.voxel_size;
+  result.voxels = voxels.size();
+
+  // Pieces smaller than a hundredth of the largest are outliers or specks.
+  int component_count = 0;
+  std::vector<int> component = voxel_components(voxels, component_count);
+  std::vector<size_t> sizes(size_t(component_count), 0);
+  for (int c : component) ++sizes[size_t(c)];
+  size_t largest = *std::max_element(sizes.begin(), sizes.end());
+  auto kept = [&](int c) { return sizes[size_t(c)] >= std::max<size_t>(20, largest / 100); };
+  std::vector<uint32_t> seeds;
+  std::vector<bool> seeded(size_t(component_count), false);
+  std::vector<Eigen::Vector3d> surface_points;
+  for (uint32_t v = 0; v < voxels.size(); ++v) {
+    if (!kept(component[v])) {
+      ++result.discarded_voxels;
+      continue;
+    }
+    surface_points.push_back(voxels.centroids[v]);
+    if (!seeded[size_t(component[v])]) {
+      seeded[size_t(component[v])] = true;
+      seeds.push_back(v);
+      ++result.components;
+    }
+  }
+  // The root of each piece: the far end of a double sweep, a limb's tip
+  // where there are limbs (so that the bands cross every limb, not along it).
+  std::vector<double> from_seed = geodesic_distances(voxels, seeds);
+  std::vector<uint32_t> roots = seeds;
+  std::vector<int> seed_index(size_t(component_count), -1);
+  for (size_t s = 0; s < seeds.size(); ++s) seed_index[size_t(component[seeds[s]])] = int(s);
+  for (uint32_t v = 0; v < voxels.size(); ++v) {
+    int s = seed_index[size_t(component[v])];
+    if (s >= 0 && from_seed[v] > from_seed[roots[size_t(s)]]) roots[size_t(s)] = v;
+  }
+  std::vector<double> distance = geodesic_distances(voxels, roots);
+  for (uint32_t v = 0; v < voxels.size(); ++v)
+    if (!kept(component[v])) distance[v] = -1;
+
+  double band_width = options.band_voxels * voxels.voxel_size;
+  LevelSetGraph levels = build_level_set_graph(voxels, distance, band_width);
+  if (arc_fraction(levels) > 0.5)
+    throw UnsupportedError(source + ": the cloud is a sheet, not a body of tubes (most bands of distance along it are open "
+                                    "arcs): it has no curve skeleton; give a skeleton file");
+
+  PointIndex<double> surface(surface_points);
+  Extraction x{voxels, levels, surface, surface_points, band_width, WorkGraph(levels), {}};
+  for (const auto& node : levels.nodes) x.position.push_back(node.centre);
+  remove_short_cycles(x, band_width);
+  prune_spurs(x);
+  std::vector<Chain> chains = trace_chains(x);
+  centre_on_cross_sections(x, chains);
+  place_junctions(x, chains);
+  for (auto& chain : chains) {
+    if (chain.closed()) continue;
+    if (x.work.degree(chain.nodes.front()) == 1) place_end(x, chain.nodes);
+    if (x.work.degree(chain.nodes.back()) == 1) {
+      std::reverse(chain.nodes.begin(), chain.nodes.end());
+      place_end(x, chain.nodes);
+      std::reverse(chain.nodes.begin(), chain.nodes.end());
+    }
+  }
+
+  // Emit: key nodes once, thinned chains between them.
+  std::map<std::array<int, 2>, int> pair_count;
+  for (const auto& chain : chains)
+    ++pair_count[{std::min(chain.nodes.front(), chain.nodes.back()), std::max(chain.nodes.front(), chain.nodes.back())}];
+  std::map<int, int> output_index;
+  auto emit = [&](int v) {
+    auto [it, inserted] = output_index.try_emplace(v, int(result.skeleton.nodes.size()));
+    if (inserted) result.skeleton.nodes.push_back(x.position[size_t(v)]);
+    return it->second;
+  };
+  for (const auto& chain : chains) {
+    int a = chain.nodes.front(), b = chain.nodes.back();
+    size_t fewest = chain.closed() ? 2 : pair_count[{std::min(a, b), std::max(a, b)}] > 1 ? 1 : 0;
+    std::vector<int> thinned = thin_chain(x, chain.nodes, fewest);
+    if (thinned.size() < 2 || (thinned.size() == 2 && (x.position[size_t(a)] - x.position[size_t(b)]).norm() == 0)) continue;
+    for (size_t k = 1; k < thinned.size(); ++k) {
+      // Inner nodes are fresh per chain; key nodes are shared.
+      int from = k == 1 ? emit(thinned[0]) : int(result.skeleton.nodes.size()) - 1;
+      int to;
+      if (k + 1 == thinned.size()) {
+        to = emit(thinned[k]);
+      } else {
+        to = int(result.skeleton.nodes.size());
+        result.skeleton.nodes.push_back(x.position[size_t(thinned[k])]);
+      }
+      if (from != to) result.skeleton.edges.push_back({from, to});
+    }
+  }
+  for (const auto& p : result.skeleton.nodes) result.radii.push_back(x.inscribed_radius(p));
+  if (result.skeleton.edges.empty() || is_a_blob(x, result))
+    throw UnsupportedError(source + ": the cloud is a single blob with no limbs (no part of it reaches out of its widest "
+                                    "inscribed ball): it has no curve skeleton; give a skeleton file");
+  return result;
+}
+
+}  // namespace mcquad

@@ -1,0 +1,246 @@
+// The skeleton extracted from a cloud against the generator's true skeleton:
+// topology (junctions, ends, cycles, components), centring and coverage.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+
+#include "core/errors.h"
+#include "generate/shapes.h"
+#include "skeleton/cloud_skeleton.h"
+#include "skeleton/skeleton_graph.h"
+
+namespace mcquad {
+namespace {
+
+struct Topology {
+  int junctions = 0, ends = 0, cycles = 0, components = 0;
+  bool operator==(const Topology& o) const {
+    return junctions == o.junctions && ends == o.ends && cycles == o.cycles && components == o.components;
+  }
+};
+
+Topology topology_of(const SkeletonData& skeleton) {
+  SkeletonGraph graph = build_skeleton_graph(skeleton, "skeleton", 0.0);
+  Topology t;
+  for (size_t v = 0; v < graph.node_count(); ++v) {
+    t.junctions += graph.kind(int(v)) == NodeKind::kJunction;
+    t.ends += graph.kind(int(v)) == NodeKind::kEnd;
+  }
+  for (int c = 0; c < graph.component_count; ++c) t.cycles += graph.independent_cycles(c);
+  t.components = graph.component_count;
+  return t;
+}
+
+double distance_to_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  Eigen::Vector3d ab = b - a;
+  double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (p - a - t * ab).norm();
+}
+
+double distance_to_skeleton(const Eigen::Vector3d& p, const SkeletonData& skeleton) {
+  double nearest = INFINITY;
+  for (auto [a, b] : skeleton.edges)
+    nearest = std::min(nearest, distance_to_segment(p, skeleton.nodes[size_t(a)], skeleton.nodes[size_t(b)]));
+  return nearest;
+}
+
+struct Score {
+  Topology truth, found;
+  double mean_offset = 0, worst_offset = 0;  // node distance to the true skeleton / smallest radius
+  double covered = 0;                        // fraction of the true length within its radius of the found skeleton
+};
+
+Score score(const GeneratedShape& shape, const SkeletonData& found) {
+  Score s;
+  s.truth = topology_of(shape.skeleton);
+  s.found = topology_of(found);
+  double smallest = INFINITY;
+  for (const auto& c : shape.surface.capsules()) smallest = std::min(smallest, c.radius);
+  for (const auto& p : found.nodes) {
+    double d = distance_to_skeleton(p, shape.skeleton) / smallest;
+    s.mean_offset += d / double(found.nodes.size());
+    s.worst_offset = std::max(s.worst_offset, d);
+  }
+  double total = 0, within = 0;
+  for (const auto& c : shape.surface.capsules()) {
+    double length = (c.b - c.a).norm();
+    int steps = std::max(1, int(std::ceil(length / (0.05 * smallest))));
+    for (int k = 0; k < steps; ++k) {
+      Eigen::Vector3d p = c.a + (c.b - c.a) * ((k + 0.5) / steps);
+      total += length / steps;
+      if (distance_to_skeleton(p, found) <= c.radius) within += length / steps;
+    }
+  }
+  s.covered = within / total;
+  return s;
+}
+
+struct Case {
+  std::string shape;
+  ShapeOptions options;
+  std::string label;
+};
+
+std::vector<Case> cases() {
+  std::vector<Case> all;
+  for (const char* name : {"t-shape", "torus-knot", "tube-frame", "tube", "bent-tube", "torus", "y-fork", "octopus", "fan",
+                           "double-junction", "theta", "parallel-tubes", "thin-branch", "tight-knot"})
+    all.push_back({name, ShapeOptions{}, name});
+  for (int arms = 3; arms <= 9; ++arms) {
+    ShapeOptions o;
+    o.arms = arms;
+    all.push_back({"star", o, "star-" + std::to_string(arms)});
+    all.push_back({"planar-star", o, "planar-star-" + std::to_string(arms)});
+  }
+  for (double angle : {15.0, 30.0, 45.0, 60.0}) {
+    ShapeOptions o;
+    o.angle_degrees = angle;
+    all.push_back({"y-fork", o, "y-fork-" + std::to_string(int(angle))});
+  }
+  for (const char* name : {"t-shape", "tube-frame", "y-fork", "star"}) {
+    ShapeOptions noisy, outliers, holes, density;
+    noisy.noise = 0.05;
+    outliers.outliers = 0.01;
+    holes.holes = 6;
+    density.density_ratio = 10;
+    all.push_back({name, noisy, std::string(name) + "+noise"});
+    all.push_back({name, outliers, std::string(name) + "+outliers"});
+    all.push_back({name, holes, std::string(name) + "+holes"});
+    all.push_back({name, density, std::string(name) + "+density"});
+  }
+  return all;
+}
+
+// Cases the extraction does not get right yet (docs/SKELETON.md lists what
+// is wrong with each); kept, disabled, so that they are run and looked at:
+// mcquad_tests --gtest_also_run_disabled_tests --gtest_filter='*KnownHard*'
+bool known_hard(const std::string& label) {
+  for (const char* hard : {"tube-frame", "octopus", "fan", "theta", "tight-knot", "planar-star-5", "planar-star-6",
+                           "planar-star-7", "planar-star-8", "planar-star-9", "y-fork-15", "y-fork-30", "star+holes"})
+    if (label == hard || label.rfind(std::string(hard) + "+", 0) == 0) return true;
+  return false;
+}
+
+std::vector<Case> right_cases() {
+  std::vector<Case> selected;
+  for (const Case& c : cases())
+    if (!known_hard(c.label)) selected.push_back(c);
+  return selected;
+}
+
+std::vector<Case> hard_cases() {
+  std::vector<Case> selected;
+  for (const Case& c : cases())
+    if (known_hard(c.label)) selected.push_back(c);
+  return selected;
+}
+
+void expect_true_skeleton(const Case& c) {
+  GeneratedShape shape = generate_shape(c.shape, c.options);
+  ExtractedSkeleton extracted = extract_skeleton(shape.cloud, c.label);
+  Score s = score(shape, extracted.skeleton);
+  std::printf("%-22s truth J%d E%d C%d K%d found J%d E%d C%d K%d offset mean %.3f worst %.3f covered %.3f (%zu nodes)\n",
+              c.label.c_str(), s.truth.junctions, s.truth.ends, s.truth.cycles, s.truth.components, s.found.junctions,
+              s.found.ends, s.found.cycles, s.found.components, s.mean_offset, s.worst_offset, s.covered,
+              extracted.skeleton.nodes.size());
+  if (const char* dump = std::getenv("MCQUAD_SKELETON_DUMP")) {
+    write_skeleton_obj(std::string(dump) + "/" + c.label + ".found.obj", extracted.skeleton);
+    write_skeleton_obj(std::string(dump) + "/" + c.label + ".truth.obj", shape.skeleton);
+    for (size_t v = 0; v < extracted.skeleton.nodes.size(); ++v) {
+      const auto& p = extracted.skeleton.nodes[v];
+      std::printf("  node %zu (%.2f %.2f %.2f) r %.2f offset %.2f\n", v, p.x(), p.y(), p.z(), extracted.radii[v],
+                  distance_to_skeleton(p, shape.skeleton));
+    }
+  }
+  EXPECT_TRUE(s.found == s.truth);
+  EXPECT_LE(s.mean_offset, 0.10);
+  EXPECT_LE(s.worst_offset, 0.50);
+  EXPECT_GE(s.covered, 0.95);
+}
+
+std::string case_name(const testing::TestParamInfo<Case>& info) {
+  std::string name = info.param.label;
+  for (char& ch : name)
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  return name;
+}
+
+class ExtractedSkeletonOf : public testing::TestWithParam<Case> {};
+TEST_P(ExtractedSkeletonOf, HasTheTrueTopologyCentredAndCovering) { expect_true_skeleton(GetParam()); }
+INSTANTIATE_TEST_SUITE_P(GeneratedShapes, ExtractedSkeletonOf, testing::ValuesIn(right_cases()), case_name);
+
+class KnownHardSkeletonOf : public testing::TestWithParam<Case> {};
+TEST_P(KnownHardSkeletonOf, DISABLED_HasTheTrueTopologyCentredAndCovering) { expect_true_skeleton(GetParam()); }
+INSTANTIATE_TEST_SUITE_P(GeneratedShapes, KnownHardSkeletonOf, testing::ValuesIn(hard_cases()), case_name);
+
+TEST(CloudSkeleton, IsDeterministicAndScaleFree) {
+  ShapeOptions options;
+  options.noise = 0.03;
+  GeneratedShape shape = generate_shape("y-fork", options);
+  ExtractedSkeleton first = extract_skeleton(shape.cloud, "y-fork");
+  ExtractedSkeleton second = extract_skeleton(shape.cloud, "y-fork");
+  ASSERT_EQ(first.skeleton.nodes.size(), second.skeleton.nodes.size());
+  for (size_t v = 0; v < first.skeleton.nodes.size(); ++v) EXPECT_EQ(first.skeleton.nodes[v], second.skeleton.nodes[v]);
+  EXPECT_EQ(first.skeleton.edges, second.skeleton.edges);
+  // Millimetres instead of metres: the same skeleton, a thousand times larger.
+  PointCloud scaled = shape.cloud;
+  for (auto& p : scaled.points) p *= 1000.0f;
+  ExtractedSkeleton large = extract_skeleton(scaled, "y-fork in mm");
+  Topology small_topology = topology_of(first.skeleton), large_topology = topology_of(large.skeleton);
+  EXPECT_TRUE(small_topology == large_topology);
+  for (const auto& p : large.skeleton.nodes) EXPECT_LE(distance_to_skeleton(p / 1000.0, first.skeleton), 0.05);
+}
+
+TEST(CloudSkeleton, RadiiAreTheTubes) {
+  GeneratedShape shape = generate_shape("thin-branch", ShapeOptions{});
+  ExtractedSkeleton extracted = extract_skeleton(shape.cloud, "thin-branch");
+  ASSERT_EQ(extracted.radii.size(), extracted.skeleton.nodes.size());
+  for (size_t v = 0; v < extracted.radii.size(); ++v) {
+    double truth = shape.surface.capsules()[size_t(shape.surface.nearest_capsule(extracted.skeleton.nodes[v]))].radius;
+    EXPECT_NEAR(extracted.radii[v], truth, 0.25 * truth) << "node " << v;
+  }
+}
+
+TEST(CloudSkeleton, RefusesTooFewPoints) {
+  PointCloud cloud;
+  for (int k = 0; k < 50; ++k) cloud.points.emplace_back(float(k), 0.0f, 0.0f);
+  try {
+    extract_skeleton(cloud, "tiny.ply");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("tiny.ply: 50 points are too few"), std::string::npos) << e.what();
+  }
+}
+
+TEST(CloudSkeleton, RefusesASheet) {
+  PointCloud cloud;
+  std::mt19937_64 random(3);
+  std::uniform_real_distribution<float> u(-5.0f, 5.0f);
+  for (int k = 0; k < 40000; ++k) cloud.points.emplace_back(u(random), u(random), 0.01f * u(random));
+  try {
+    extract_skeleton(cloud, "sheet.ply");
+    FAIL() << "no error";
+  } catch (const UnsupportedError& e) {
+    EXPECT_NE(std::string(e.what()).find("sheet.ply: the cloud is a sheet"), std::string::npos) << e.what();
+  }
+}
+
+TEST(CloudSkeleton, RefusesABlobWithNoLimbs) {
+  PointCloud cloud;
+  std::mt19937_64 random(4);
+  std::normal_distribution<float> n(0.0f, 1.0f);
+  for (int k = 0; k < 40000; ++k) cloud.points.push_back(Eigen::Vector3f(n(random), n(random), n(random)).normalized() * 3.0f);
+  try {
+    extract_skeleton(cloud, "ball.ply");
+    FAIL() << "no error";
+  } catch (const UnsupportedError& e) {
+    EXPECT_NE(std::string(e.what()).find("ball.ply: the cloud is a single blob"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace mcquad
