@@ -34,6 +34,7 @@ __version__: str = _core.__version__
 __all__ = [
     "Error", "InputError", "UnsupportedError", "DeviceError", "OutputError",
     "Skeleton", "Shape", "Verdict", "FitResult",
+    "ExtractedSkeleton", "extract_skeleton",
     "read_points", "read_skeleton", "read_mesh", "write_mesh",
     "fit", "metrics", "surfaces", "generate", "shape_names",
 ]
@@ -49,6 +50,14 @@ class Skeleton(NamedTuple):
 
     nodes: np.ndarray
     edges: np.ndarray
+
+
+class ExtractedSkeleton(NamedTuple):
+    """A skeleton extracted from a cloud (see :func:`extract_skeleton`)."""
+
+    skeleton: Skeleton
+    radii: np.ndarray  #: (M,) float64, per node: its distance to the cloud
+    report: Dict[str, Any]  #: as ``mcquad skeleton --report`` writes it
 
 
 class Shape(NamedTuple):
@@ -113,6 +122,22 @@ def read_points(path: PathLike, normals: bool = False):
     return (points, point_normals) if normals else points
 
 
+def extract_skeleton(points: Union[PathLike, ArrayLike], *, voxels: int = 0) -> ExtractedSkeleton:
+    """A curve skeleton of the cloud alone, as ``mcquad skeleton`` (docs/SKELETON.md).
+
+    Args:
+        points: (N, 3) array or the path of a point cloud file; normals are not needed.
+        voxels: voxels the cloud is thinned to (0 = a quarter of the points, at most 40,000).
+
+    Raises:
+        InputError: fewer than 200 points, or a malformed cloud.
+        UnsupportedError: a cloud with no curve skeleton (a sheet, a blob with no limbs).
+    """
+    array, _, name = _points(points, None)
+    nodes, edges, radii, report = _core.extract_skeleton(np.ascontiguousarray(array, dtype=np.float32), name, int(voxels))
+    return ExtractedSkeleton(Skeleton(nodes, edges), radii, report)
+
+
 def read_skeleton(path: PathLike) -> Skeleton:
     """Reads a skeleton (.obj with v/l lines, or CGAL polylines .cgal/.polylines/.txt)."""
     nodes, edges = _core.read_skeleton(_path(path))
@@ -141,10 +166,8 @@ def _points(points: Union[PathLike, ArrayLike], normals: Optional[ArrayLike]) ->
 
 
 def _skeleton(skeleton: Optional[SkeletonLike]) -> Tuple[np.ndarray, np.ndarray, str]:
-    if skeleton is None:
-        raise UnsupportedError(
-            "no skeleton given: automatic skeleton extraction is not available in this version; "
-            "pass a skeleton file or (nodes, edges) arrays")
+    if skeleton is None:  # no nodes and no name: the fit extracts one from the cloud
+        return np.zeros((0, 3)), np.zeros((0, 2), dtype=np.int64), ""
     if isinstance(skeleton, (str, os.PathLike)):
         s = read_skeleton(skeleton)
         return s.nodes, s.edges, _path(skeleton)
@@ -197,7 +220,8 @@ def fit(
         points: (N, 3) array (float64 is converted to float32, as the readers
             store points) or the path of a point cloud file.
         skeleton: a skeleton file's path, a :class:`Skeleton`, a tuple
-            ``(nodes, edges)`` or a dict with those keys (0-based edges).
+            ``(nodes, edges)`` or a dict with those keys (0-based edges);
+            None: extracted from the cloud first (:func:`extract_skeleton`).
         normals: the scan's outward normals, (N, 3), for the verdict's inward
             check (default: the file's, when ``points`` is a path that has them;
             without normals the skeleton tells inward).

@@ -2,6 +2,7 @@
 // mcquad._core): numpy arrays in and out, the library's exceptions as Python
 // ones, the GIL released while the pipeline runs. python/mcquad/__init__.py
 // holds the documented functions; this file only converts.
+#include <chrono>
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -16,6 +17,7 @@
 #include "io/mesh_io.h"
 #include "io/point_cloud_io.h"
 #include "io/skeleton_io.h"
+#include "pipeline/skeleton_extraction.h"
 #include "pipeline/fit.h"
 #include "pipeline/measure.h"
 #include "pipeline/surfaces.h"
@@ -80,6 +82,24 @@ py::tuple read_points(const std::string& path) {
     normals = points_of(as_points);
   }
   return py::make_tuple(points_of(cloud), normals);
+}
+
+//! mcquad.extract_skeleton: nodes, edges, radii and the report of `mcquad skeleton --report`.
+py::tuple extract_skeleton_arrays(FloatArray points, const std::string& name, size_t voxels) {
+  PointCloud cloud = cloud_from_array(points, name, py::none());
+  SkeletonExtractionOptions options;
+  options.target_voxels = voxels;
+  auto started = std::chrono::steady_clock::now();
+  ExtractedSkeleton extracted;
+  {
+    py::gil_scoped_release release;
+    extracted = extract_skeleton(cloud, name, options);
+  }
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  py::array_t<double> radii(py::ssize_t(extracted.radii.size()));
+  std::copy(extracted.radii.begin(), extracted.radii.end(), radii.mutable_data());
+  return py::make_tuple(nodes_of(extracted.skeleton), edges_of(extracted.skeleton), radii,
+                        parse_json(skeleton_report(extracted, name, seconds).dump()));
 }
 
 py::tuple read_skeleton_arrays(const std::string& path) {
@@ -202,6 +222,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("shape_defaults", &shape_defaults, "The generator options' defaults.");
   m.def("read_points", &read_points, py::arg("path"));
   m.def("read_skeleton", &read_skeleton_arrays, py::arg("path"));
+  m.def("extract_skeleton", &extract_skeleton_arrays, py::arg("points"), py::arg("name"), py::arg("voxels"));
   m.def("read_mesh", &read_mesh_arrays, py::arg("path"));
   m.def("write_mesh", &write_mesh_arrays, py::arg("path"), py::arg("vertices"), py::arg("faces"));
   m.def("generate", &generate, py::arg("name"), py::arg("directory"), py::arg("options"));

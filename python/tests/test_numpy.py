@@ -149,8 +149,14 @@ def test_unwritable_output_raises_output_error(tmp_path):
     assert (tmp_path / "m.stl").stat().st_size == 84 + 2 * 50
 
 
-def test_no_skeleton_is_refused_clearly():
-    with pytest.raises(mcquad.UnsupportedError, match="no skeleton given"):
+def test_no_skeleton_extracts_one_and_bad_clouds_are_refused_clearly(t_shape):
+    extracted = mcquad.extract_skeleton(t_shape / "t-shape.ply")
+    assert (extracted.report["junctions"], extracted.report["ends"]) == (1, 3)
+    assert extracted.radii.shape == (len(extracted.skeleton.nodes),)
+    assert np.all(np.abs(extracted.radii - 1.0) < 0.25)
+    fitted = mcquad.fit(t_shape / "t-shape.ply", iterations=2, backend="serial")
+    assert fitted.report["skeleton_extraction"]["junctions"] == 1
+    with pytest.raises(mcquad.InputError, match="100 points are too few"):
         mcquad.fit(np.random.default_rng(1).random((100, 3)))
 
 
