@@ -160,10 +160,8 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
   if (input.skeleton.nodes.empty() && input.skeleton_name.empty()) {
     // Before the points are sorted: the same cloud order, hence the same
     // skeleton, as `mcquad skeleton` reading the same file.
-    auto started = std::chrono::steady_clock::now();
     ExtractedSkeleton skeleton = timer.run("extract_skeleton", [&] { return extract_skeleton(cloud, points_path); });
-    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    extraction_report = skeleton_report(skeleton, points_path, seconds);
+    extraction_report = skeleton_report(skeleton, points_path, timer.seconds["extract_skeleton"].get<double>());
     input.skeleton = skeleton.skeleton;
     extracted = std::move(skeleton.skeleton);
     input.skeleton_name = "the skeleton extracted from " + points_path;

@@ -36,13 +36,17 @@ nlohmann::json skeleton_report(const ExtractedSkeleton& extracted, const std::st
           {"seconds", seconds}};
 }
 
-ExtractedSkeleton extract_skeleton_from_file(const std::string& points_path, const SkeletonExtractionOptions& options,
-                                             double& seconds) {
-  PointCloud cloud = read_point_cloud(points_path);
+ExtractedSkeleton extract_skeleton_timed(const PointCloud& cloud, const std::string& name,
+                                         const SkeletonExtractionOptions& options, double& seconds) {
   auto start = std::chrono::steady_clock::now();
-  ExtractedSkeleton extracted = extract_skeleton(cloud, points_path, options);
+  ExtractedSkeleton extracted = extract_skeleton(cloud, name, options);
   seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return extracted;
+}
+
+ExtractedSkeleton extract_skeleton_from_file(const std::string& points_path, const SkeletonExtractionOptions& options,
+                                             double& seconds) {
+  return extract_skeleton_timed(read_point_cloud(points_path), points_path, options, seconds);
 }
 
 }  // namespace mcquad

@@ -2,7 +2,6 @@
 // mcquad._core): numpy arrays in and out, the library's exceptions as Python
 // ones, the GIL released while the pipeline runs. python/mcquad/__init__.py
 // holds the documented functions; this file only converts.
-#include <chrono>
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -89,13 +88,12 @@ py::tuple extract_skeleton_arrays(FloatArray points, const std::string& name, si
   PointCloud cloud = cloud_from_array(points, name, py::none());
   SkeletonExtractionOptions options;
   options.target_voxels = voxels;
-  auto started = std::chrono::steady_clock::now();
+  double seconds = 0;
   ExtractedSkeleton extracted;
   {
     py::gil_scoped_release release;
-    extracted = extract_skeleton(cloud, name, options);
+    extracted = extract_skeleton_timed(cloud, name, options, seconds);
   }
-  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   py::array_t<double> radii(py::ssize_t(extracted.radii.size()));
   std::copy(extracted.radii.begin(), extracted.radii.end(), radii.mutable_data());
   return py::make_tuple(nodes_of(extracted.skeleton), edges_of(extracted.skeleton), radii,
