@@ -121,7 +121,7 @@ void BM_InitialMesh(benchmark::State& state) {
 void BM_Refinement(benchmark::State& state) {
   Prepared& p = prepared(kPaperPoints, 0);
   InitialMeshOptions options;
-  options.stage = "extruded";
+  options.stage = ConstructionStage::kExtruded;
   QuadMesh rough = build_initial_mesh(p.graph, p.setup.bones, p.cloud, options, "knot").mesh;
   for (auto _ : state) {
     QuadMesh mesh = rough;

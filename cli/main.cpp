@@ -40,7 +40,7 @@ void check_output_path(const std::string& path, const std::vector<std::string>& 
     throw OutputError(path + ": cannot write: directory " + dir.string() + " does not exist");
 }
 
-void print_surface_summary(const nlohmann::json& report, const std::string& cad_path, bool with_cloud);
+void print_surface_summary(const SurfaceReport& report, bool with_cloud);
 
 const std::vector<std::string> kMeshExtensions = {"obj", "off", "ply", "om", "stl", "stla"};
 const std::vector<std::string> kCadExtensions = {"step", "stp", "iges", "igs"};
@@ -59,9 +59,32 @@ CLI::Range range(const char* name) {
   return CLI::Range(r.low, r.high);
 }
 
+//! An option taking one of the words of `words` (pipeline/fit_options.h):
+//! CLI11 turns the word into its value (as the number CLI11 reads enums
+//! and bools from); anything else is a usage error naming the words.
+template <typename Value>
+CLI::Option* add_word_option(CLI::App* app, const std::string& name, Value& value, const OptionWords<Value>& words,
+                             const std::string& help) {
+  std::string accepted;
+  for (const auto& entry : words) accepted += std::string(accepted.empty() ? "" : ", ") + entry.word;
+  CLI::Validator to_value(
+      [&words, accepted](std::string& input) -> std::string {
+        for (const auto& [word, v] : words)
+          if (input == word) {
+            input = std::to_string(static_cast<long>(v));
+            return "";
+          }
+        return "'" + input + "' is not one of " + accepted;
+      },
+      "");
+  return app->add_option(name, value, help)
+      ->transform(to_value)
+      ->type_name("WORD")
+      ->default_str(word_of(value, words));
+}
+
 struct FitCommand {
-  std::string points, skeleton, output, report, html, backend = "auto", ends = "auto", stage = "refined", mode = "robust";
-  std::string projection = "mean", fill_holes = "on", crossing_guard = "on", own_cells = "on", local_epsilon = "on";
+  std::string points, skeleton, output, report, html;
   FitOptions options;
   double alpha_degrees = 10.0;
   double junction_degrees = 75.0;
@@ -77,8 +100,7 @@ struct FitCommand {
     if (evolution)
       app->add_option("--html", html, "write a self-contained HTML report here (the meshes, cloud and verdict to turn around)");
     auto& init = options.initial;
-    app->add_option("--ends", ends, "ends: auto (decided from the cloud), open or capped")
-        ->check(CLI::IsMember({"auto", "open", "capped"}))->capture_default_str();
+    add_word_option(app, "--ends", init.ends, end_mode_words(), "ends: auto (decided from the cloud), open or capped");
     app->add_option("--start-fraction", init.start_fraction, "initial mesh radius as a fraction of the local cloud radius")
         ->check(range("start_fraction"))->capture_default_str();
     app->add_option("--resolution", init.resolution, "target edge length of the refined mesh (0 = 16 vertices around a tube)")
@@ -90,32 +112,30 @@ struct FitCommand {
         ->check(range("min_junction_angle"))->capture_default_str();
     app->add_option("--write-skeleton", options.construction_skeleton, "write the skeleton the mesh is built on (OBJ)");
     if (!evolution) {
-      app->add_option("--stage", stage, "stop after: blocks, extruded or refined")
-          ->check(CLI::IsMember({"blocks", "extruded", "refined"}))->capture_default_str();
+      add_word_option(app, "--stage", init.stage, construction_stage_words(), "stop after: blocks, extruded or refined");
       return;
     }
     app->add_flag("--strict", strict, "exit with code 7 (after writing the outputs) when a check of the verdict fails");
     auto& e = options.evolution;
-    app->add_option("--backend", backend, "auto (OpenCL if a device exists), serial or opencl")
-        ->check(CLI::IsMember({"auto", "serial", "opencl"}))->capture_default_str();
+    add_word_option(app, "--backend", options.backend, backend_words(), "auto (OpenCL if a device exists), serial or opencl");
     app->add_option("--device", options.device, "OpenCL device index or name (default: $MCQUAD_DEVICE, else first GPU, else first device)");
-    app->add_option("--mode", mode, "robust (improvements over the paper, docs/DESIGN.md) or paper (the paper's step exactly)")
-        ->check(CLI::IsMember({"robust", "paper"}))->capture_default_str();
+    add_word_option(app, "--mode", e.mode, evolution_mode_words(),
+                    "robust (improvements over the paper, docs/DESIGN.md) or paper (the paper's step exactly)");
     app->add_option("--relaxation", e.relaxation, "robust mode: tangential relaxation weight before each step (0 = off)")
         ->check(range("relaxation"))->capture_default_str();
-    app->add_option("--projection", projection, "robust mode: a cell's distance along a ray from its samples: mean, or min (the paper's)")
-        ->check(CLI::IsMember({"mean", "min"}))->capture_default_str();
-    app->add_option("--fill-holes", fill_holes, "robust mode: vertices that find no cell take their neighbours' offset (on, off)")
-        ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
-    app->add_option("--crossing-guard", crossing_guard, "robust mode: shorten moves that make faces cross or fold, turn over or lose shape, after each step (on, off)")
-        ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
+    add_word_option(app, "--projection", e.mean_projection, projection_words(),
+                    "robust mode: a cell's distance along a ray from its samples: mean, or min (the paper's)");
+    add_word_option(app, "--fill-holes", e.fill_holes, on_off_words(),
+                    "robust mode: vertices that find no cell take their neighbours' offset (on, off)");
+    add_word_option(app, "--crossing-guard", e.crossing_guard, on_off_words(),
+                    "robust mode: shorten moves that make faces cross or fold, turn over or lose shape, after each step (on, off)");
     app->add_option("--held-back-relaxation", e.held_back_relaxation,
                     "robust mode: tangential relaxation weight for the vertices the crossing guard held back (0 = off)")
         ->check(range("held_back_relaxation"))->capture_default_str();
-    app->add_option("--own-cells", own_cells, "robust mode: a vertex sees only the cells of the bones near its own (on, off)")
-        ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
-    app->add_option("--local-epsilon", local_epsilon, "robust mode: epsilon and the ray reach scale with the local radius (on, off)")
-        ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
+    add_word_option(app, "--own-cells", e.own_cells, on_off_words(),
+                    "robust mode: a vertex sees only the cells of the bones near its own (on, off)");
+    add_word_option(app, "--local-epsilon", e.local_epsilon, on_off_words(),
+                    "robust mode: epsilon and the ray reach scale with the local radius (on, off)");
     app->add_option("--hit-band", e.hit_band,
                     "robust mode: a ray averages every cell within this fraction of epsilon of its first hit (0 = the first cell only)")
         ->check(range("hit_band"))->capture_default_str();
@@ -147,34 +167,26 @@ struct FitCommand {
     if (!options.surfaces.control_nets_path.empty()) check_output_path(options.surfaces.control_nets_path, kMeshExtensions);
     options.evolve = evolution;
     options.evolution.alpha_max = alpha_degrees * M_PI / 180.0;
-    options.evolution.mode = evolution_mode_from_name(mode, "--mode");
-    options.evolution.mean_projection = projection == "mean";
-    options.evolution.fill_holes = fill_holes == "on";
-    options.evolution.crossing_guard = crossing_guard == "on";
-    options.evolution.own_cells = own_cells == "on";
-    options.evolution.local_epsilon = local_epsilon == "on";
     options.initial.min_junction_angle = junction_degrees * M_PI / 180.0;
-    options.backend = backend_from_name(backend, "--backend");
-    options.initial.ends = end_mode_from_name(ends, "--ends");
-    options.initial.stage = stage;
     options.measure = evolution;
     options.keep_initial_mesh = !html.empty();
     FitResult result = run_fit(points, skeleton, options);
     write_mesh(output, result.mesh);
-    result.report["outputs"] = {{"mesh", std::filesystem::absolute(output).string()}};
-    if (!report.empty()) write_text_atomically(report, result.report.dump(2) + "\n");
-    if (!html.empty()) write_fit_html(result);
+    result.report.output_mesh = std::filesystem::absolute(output).string();
+    nlohmann::json json = to_json(result.report);
+    if (!report.empty()) write_text_atomically(report, json.dump(2) + "\n");
+    if (!html.empty()) write_fit_html(result, json);
     print_summary(result.report);
-    if (!result.verdict) return kExitOk;
-    return report_verdict(*result.verdict, strict);
+    if (!result.report.verdict) return kExitOk;
+    return report_verdict(*result.report.verdict, strict);
   }
 
   //! The HTML report from what the fit left in memory (the cloud is read again).
-  void write_fit_html(const FitResult& result) const {
+  void write_fit_html(const FitResult& result, const nlohmann::json& json) const {
     PointCloud cloud = read_point_cloud(points);
     SkeletonData skeleton_data = result.extracted_skeleton ? *result.extracted_skeleton : read_skeleton(skeleton);
     HtmlReportInput input;
-    input.report = &result.report;
+    input.report = &json;
     input.final_mesh = &result.mesh;
     input.initial_mesh = &result.initial_mesh;
     input.cloud = &cloud;
@@ -183,25 +195,23 @@ struct FitCommand {
     write_html_report(html, input);
   }
 
-  void print_summary(const nlohmann::json& r) const {
-    const auto& m = r.contains("metrics") ? r["metrics"]["mesh"] : r["initial_mesh"]["statistics"];
+  void print_summary(const FitReport& r) const {
+    const MeshStatistics& m = r.metrics ? r.metrics->statistics : r.initial_mesh.statistics;
     std::printf("mesh: %s (%zu vertices, %zu faces, Euler characteristic %ld, %zu irregular vertices)\n", output.c_str(),
-                m["vertices"].get<size_t>(), m["faces"].get<size_t>(), m["euler_characteristic"].get<long>(),
-                m["irregular_vertices"].get<size_t>());
-    if (r.contains("evolution")) {
-      const auto& e = r["evolution"];
+                m.vertices, m.faces, m.euler_characteristic, m.irregular_vertices);
+    if (r.evolution) {
+      const FitReport::Evolution& e = *r.evolution;
       std::printf("backend: %s on %s; error level (mean distance to the cloud's local planes) %.4g -> %.4g after %zu iterations\n",
-                  r["backend"]["name"].get<std::string>().c_str(), r["backend"]["device"].get<std::string>().c_str(),
-                  e["initial_error_level"].get<double>(), e["final_error_level"].get<double>(), e["iterations"].size());
-      const auto& q = r["metrics"];
+                  e.backend.c_str(), e.device.c_str(), e.initial_error_level, e.final_error_level(), e.iterations.size());
+    }
+    if (r.evolution && r.metrics) {
+      const QualityMetrics& q = *r.metrics;
       std::printf("distances: vertices to their nearest cloud point mean %.4g, 95 %% within %.4g; cloud points to the mesh "
                   "mean %.4g, 95 %% within %.4g; %zu pairs of faces cross\n",
-                  q["mesh_to_cloud"]["mean"].get<double>(), q["mesh_to_cloud"]["p95"].get<double>(),
-                  q["cloud_to_mesh"]["mean"].get<double>(), q["cloud_to_mesh"]["p95"].get<double>(),
-                  q["intersecting_face_pairs"].get<size_t>());
+                  q.mesh_to_cloud.mean, q.mesh_to_cloud.p95, q.cloud_to_mesh.mean, q.cloud_to_mesh.p95,
+                  q.intersecting_face_pairs);
     }
-    if (r.contains("surfaces") && r["surfaces"].contains("cad_file"))
-      print_surface_summary(r["surfaces"], options.surfaces.cad_path, true);
+    if (r.surfaces && r.surfaces->cad_file) print_surface_summary(*r.surfaces, true);
     if (!report.empty()) std::printf("report: %s\n", report.c_str());
     if (!html.empty()) std::printf("HTML report: %s\n", html.c_str());
   }
@@ -224,12 +234,12 @@ int run_skeleton(const std::string& points_path, const std::string& output, cons
   if (!json_path.empty()) check_output_path(json_path, {"json"});
   double seconds = 0;
   ExtractedSkeleton extracted = extract_skeleton_from_file(points_path, options, seconds);
-  nlohmann::json report = skeleton_report(extracted, points_path, seconds);
+  SkeletonReport report = skeleton_report(extracted, points_path, seconds);
   write_skeleton_obj(output, extracted.skeleton);
-  if (!json_path.empty()) write_text_atomically(json_path, report.dump(2) + "\n");
+  if (!json_path.empty()) write_text_atomically(json_path, to_json(report).dump(2) + "\n");
   std::printf("skeleton: %s (%zu nodes, %zu bones: %d junctions, %d ends, %d independent cycles, %d components) in %.3g s\n",
-              output.c_str(), extracted.skeleton.nodes.size(), extracted.skeleton.edges.size(), report["junctions"].get<int>(),
-              report["ends"].get<int>(), report["independent_cycles"].get<int>(), report["components"].get<int>(), seconds);
+              output.c_str(), extracted.skeleton.nodes.size(), extracted.skeleton.edges.size(), report.junctions, report.ends,
+              report.independent_cycles, report.components, seconds);
   if (!json_path.empty()) std::printf("report: %s\n", json_path.c_str());
   return kExitOk;
 }
@@ -277,26 +287,24 @@ int run_metrics(const std::string& mesh_path, const std::string& points_path, co
 }
 
 //! Two to four lines on the surfaces: file, seams, distances.
-void print_surface_summary(const nlohmann::json& report, const std::string& cad_path, bool with_cloud) {
-  const auto& checks = report["checks"];
-  const auto& file = report["cad_file"];
-  std::printf("surfaces: %s (%zu B-spline faces read back, %zu periodic; units: %s; %zu shell(s), %s, %zu free edges)\n",
-              cad_path.c_str(), file["faces_read_back"].get<size_t>(), checks["periodic_surfaces"].get<size_t>(),
-              file["units"].get<std::string>().c_str(), file["shells_read_back"].get<size_t>(),
-              file["valid_read_back"].get<bool>() ? "valid" : "NOT VALID", file["free_edges_read_back"].get<size_t>());
+void print_surface_summary(const SurfaceReport& report, bool with_cloud) {
+  const SurfaceChecks& checks = report.checks;
+  if (report.cad_file) {
+    const CadFileReport& file = *report.cad_file;
+    std::printf("surfaces: %s (%zu B-spline faces read back, %zu periodic; units: %s; %zu shell(s), %s, %zu free edges)\n",
+                file.path.c_str(), file.read_back.faces, checks.periodic_surfaces, file.units.c_str(),
+                file.read_back.shells, file.read_back.valid ? "valid" : "NOT VALID", file.read_back.free_edges);
+  }
   std::printf("seams: %zu edges, position gap %.3g, tangent-continuous within %.3g deg on %zu, max normal gap %.3g deg "
               "(%.3g deg on smooth parts of the mesh two or more edges from irregular vertices)\n",
-              checks["seam_edges"].get<size_t>(), checks["max_position_gap"].get<double>(),
-              checks["tangent_tolerance_degrees"].get<double>(), checks["seam_edges_tangent_continuous"].get<size_t>(),
-              checks["max_normal_gap_degrees"].get<double>(),
-              checks["max_normal_gap_degrees_smooth_mesh_two_or_more_edges_from_irregular"].get<double>());
-  std::printf("distance to the quad mesh: mean %.4g p95 %.4g max %.4g\n", checks["distance_to_quad_mesh"]["mean"].get<double>(),
-              checks["distance_to_quad_mesh"]["p95"].get<double>(), checks["distance_to_quad_mesh"]["max"].get<double>());
+              checks.seam_edges, checks.max_position_gap, checks.tangent_tolerance_degrees,
+              checks.seam_edges_within_tolerance, checks.max_normal_gap_degrees,
+              checks.max_normal_gap_away_from_irregular_degrees);
+  std::printf("distance to the quad mesh: mean %.4g p95 %.4g max %.4g\n", checks.to_mesh.mean, checks.to_mesh.p95,
+              checks.to_mesh.max);
   if (with_cloud)
     std::printf("distance to the cloud: mean %.4g p95 %.4g (the quad mesh's own: mean %.4g p95 %.4g)\n",
-                checks["distance_to_cloud"]["mean"].get<double>(), checks["distance_to_cloud"]["p95"].get<double>(),
-                checks["quad_mesh_distance_to_cloud"]["mean"].get<double>(),
-                checks["quad_mesh_distance_to_cloud"]["p95"].get<double>());
+                checks.to_cloud.mean, checks.to_cloud.p95, checks.mesh_to_cloud.mean, checks.mesh_to_cloud.p95);
 }
 
 int run_surfaces(const std::string& mesh_path, const std::string& points_path, const SurfaceOutputs& outputs,
@@ -309,9 +317,9 @@ int run_surfaces(const std::string& mesh_path, const std::string& points_path, c
   PointCloud cloud;
   if (!points_path.empty()) cloud = read_point_cloud(points_path);
   VerdictCheck off_cloud;
-  nlohmann::json report = export_surfaces(mesh, points_path.empty() ? nullptr : &cloud, outputs, &off_cloud);
-  if (!json_path.empty()) write_text_atomically(json_path, report.dump(2) + "\n");
-  print_surface_summary(report, outputs.cad_path, !points_path.empty());
+  SurfaceReport report = export_surfaces(mesh, points_path.empty() ? nullptr : &cloud, outputs, &off_cloud);
+  if (!json_path.empty()) write_text_atomically(json_path, to_json(report).dump(2) + "\n");
+  print_surface_summary(report, !points_path.empty());
   if (!off_cloud.name.empty()) {
     Verdict verdict;
     add_check(verdict, off_cloud);

@@ -248,14 +248,14 @@ TEST(InitialMesh, StagesStopEarly) {
   SkeletonGraph graph = build_skeleton_graph(shape.skeleton, "t");
   BoneAssignment bones = assign_points_to_bones(graph, shape.cloud, "t");
   InitialMeshOptions options;
-  options.stage = "blocks";
+  options.stage = ConstructionStage::kBlocks;
   InitialMesh blocks = build_initial_mesh(graph, bones, shape.cloud, options, "t");
   // The T's block is a cube: 3 bones' quads and 3 fillers, each split in 4.
   EXPECT_EQ(blocks.mesh.n_faces(), 24u);
   EXPECT_EQ(mesh_statistics(blocks.mesh).euler_characteristic, 2);
-  options.stage = "extruded";
+  options.stage = ConstructionStage::kExtruded;
   InitialMesh extruded = build_initial_mesh(graph, bones, shape.cloud, options, "t");
-  options.stage = "refined";
+  options.stage = ConstructionStage::kRefined;
   InitialMesh refined = build_initial_mesh(graph, bones, shape.cloud, options, "t");
   EXPECT_GE(refined.refinement_levels, 1);
   EXPECT_EQ(refined.mesh.n_faces(), extruded.mesh.n_faces() << (2 * refined.refinement_levels));

@@ -88,7 +88,7 @@ void y_fork(ShapeBuilder& b, double angle_degrees) {
 }
 
 void star(ShapeBuilder& b, int arms) {
-  if (arms < 3 || arms > 16) throw InputError("star: --arms must be between 3 and 16");
+  if (arms < 3 || arms > 16) throw InputError("star: arms must be between 3 and 16");
   // Directions spread over the sphere (Fibonacci points), then rotated off
   // the coordinate axes so no arm lines up with a block face by accident.
   // From 7 arms on, every fourth end is open and radii alternate.
@@ -105,7 +105,7 @@ void star(ShapeBuilder& b, int arms) {
 //! Arms in one plane at uneven angles (each up to a third of the even
 //! spacing off), radii cycling 0.8, 0.5, 0.65, every third end open.
 void planar_star(ShapeBuilder& b, int arms) {
-  if (arms < 3 || arms > 16) throw InputError("planar-star: --arms must be between 3 and 16");
+  if (arms < 3 || arms > 16) throw InputError("planar-star: arms must be between 3 and 16");
   int junction = b.node(Vec(0, 0, 0));
   const double radii[3] = {0.8, 0.5, 0.65};
   for (int k = 0; k < arms; ++k) {
@@ -136,7 +136,7 @@ void octopus(ShapeBuilder& b) {
 //! in one plane, neighbours --angle degrees apart (a broom; 20..40 is the
 //! hard range), the middle one open.
 void fan(ShapeBuilder& b, double angle_degrees) {
-  if (!(angle_degrees >= 10 && angle_degrees <= 60)) throw InputError("fan: --angle must be between 10 and 60");
+  if (!(angle_degrees >= 10 && angle_degrees <= 60)) throw InputError("fan: the angle must be between 10 and 60 degrees");
   int junction = b.node(Vec(0, 0, 0));
   b.tube(b.line(junction, Vec(0, 0, -5), 1.0), 1.0);
   for (int k = -1; k <= 1; ++k) {
@@ -272,9 +272,9 @@ void add_outliers(PointCloud& cloud, const TubeSurface& surface, size_t count, s
 //! there are `count`.
 PointCloud sample_with_defects(const TubeSurface& surface, size_t count, const ShapeOptions& options,
                                std::mt19937_64& random) {
-  if (options.outliers < 0 || options.outliers >= 1) throw InputError("--outliers must be in [0, 1)");
-  if (options.density_ratio < 1 || !std::isfinite(options.density_ratio)) throw InputError("--density-ratio must be at least 1");
-  if (options.holes < 0) throw InputError("--holes must not be negative");
+  if (options.outliers < 0 || options.outliers >= 1) throw InputError("outliers must be a fraction in [0, 1)");
+  if (options.density_ratio < 1 || !std::isfinite(options.density_ratio)) throw InputError("density ratio must be at least 1");
+  if (options.holes < 0) throw InputError("holes must not be negative");
   size_t outliers = size_t(std::lround(options.outliers * double(count)));
   size_t on_surface = count - outliers;
   if (options.density_ratio == 1 && options.holes == 0) {
@@ -356,8 +356,12 @@ GeneratedShape generate_shape(const std::string& name, const ShapeOptions& optio
   else if (name == "parallel-tubes") parallel_tubes(b);
   else if (name == "thin-branch") thin_branch(b);
   else if (name == "tight-knot") tight_knot(b);
-  else throw InputError("unknown shape '" + name + "' (see 'mcquad generate --help')");
-  if (options.noise < 0 || !std::isfinite(options.noise)) throw InputError("--noise must be a non-negative number");
+  else {
+    std::string known;
+    for (const auto& entry : shape_catalogue()) known += (known.empty() ? "" : ", ") + entry.first;
+    throw InputError("unknown shape '" + name + "' (known: " + known + ")");
+  }
+  if (options.noise < 0 || !std::isfinite(options.noise)) throw InputError("noise must be a non-negative number");
   GeneratedShape shape = std::move(b.shape);
   shape.name = name;
   std::mt19937_64 random(options.seed);

@@ -564,7 +564,7 @@ InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment&
   // resolution), whatever resolution is asked for, so every resolution
   // makes the same choice.
   CoarseMesh coarse = assemble_coarse_mesh(skeleton, cloud, *cloud_index, options, source, BlockPreference::kFitted);
-  if (coarse.preference_mattered && options.stage == "refined") {
+  if (coarse.preference_mattered && options.stage == ConstructionStage::kRefined) {
     size_t crossings = intersecting_face_pairs(refined(coarse, 1)).size();
     if (crossings > 0) {
       CoarseMesh cubes = assemble_coarse_mesh(skeleton, cloud, *cloud_index, options, source, BlockPreference::kCube);
@@ -572,7 +572,7 @@ InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment&
     }
   }
   InitialMesh& result = coarse.result;
-  if (options.stage == "refined") {
+  if (options.stage == ConstructionStage::kRefined) {
     result.refinement_levels = refinement_levels(result.mesh, options);
     result.mesh = refined(coarse, result.refinement_levels);
     result.irregular_allowed.resize(result.mesh.n_vertices(), false);
@@ -596,8 +596,8 @@ CoarseMesh assemble_coarse_mesh(const TubeSkeleton& skeleton, const PointCloud& 
   CoarseMesh coarse;
   coarse.assembler = std::make_unique<MeshAssembler>(skeleton, cloud, cloud_index, options, source);
   MeshAssembler& assembler = *coarse.assembler;
-  coarse.preference_mattered = assembler.build_blocks(options.stage == "blocks", preference);
-  if (options.stage == "blocks") {
+  coarse.preference_mattered = assembler.build_blocks(options.stage == ConstructionStage::kBlocks, preference);
+  if (options.stage == ConstructionStage::kBlocks) {
     if (assembler.soup().quads.empty()) throw InputError(source + ": the skeleton has no junction, so there are no blocks");
   } else {
     assembler.build_chains();

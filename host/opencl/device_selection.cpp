@@ -15,6 +15,13 @@ std::string type_name(cl_device_type type) {
   return "other";
 }
 
+//! "2 found: 0 'name', 1 'name'": what a wrong request could have asked for.
+std::string found_devices(const std::vector<DeviceInfo>& devices) {
+  std::string text = std::to_string(devices.size()) + " found:";
+  for (const auto& d : devices) text += (d.index > 0 ? ", " : " ") + std::to_string(d.index) + " '" + d.name + "'";
+  return text;
+}
+
 }  // namespace
 
 std::vector<DeviceInfo> list_devices() {
@@ -58,12 +65,12 @@ DeviceInfo select_device(const std::string& request) {
     long long index;
     if (parse_integer(wanted, index)) {
       if (index < 0 || index >= static_cast<long long>(devices.size()))
-        throw DeviceError("OpenCL device " + wanted + " does not exist (" + std::to_string(devices.size()) + " found; see 'mcquad devices')");
+        throw DeviceError("OpenCL device " + wanted + " does not exist (" + found_devices(devices) + ")");
       return devices[size_t(index)];
     }
     for (const auto& d : devices)
       if (d.name.find(wanted) != std::string::npos || d.platform.find(wanted) != std::string::npos) return d;
-    throw DeviceError("no OpenCL device matches '" + wanted + "' (see 'mcquad devices')");
+    throw DeviceError("no OpenCL device matches '" + wanted + "' (" + found_devices(devices) + ")");
   }
   for (const auto& d : devices)
     if (d.type == "GPU") return d;

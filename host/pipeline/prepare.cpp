@@ -1,6 +1,9 @@
 #include "pipeline/prepare.h"
 
+#include <malloc.h>
+
 #include <algorithm>
+#include <memory>
 
 namespace mcquad {
 
@@ -19,15 +22,30 @@ size_t cell_leaf_size(size_t requested, size_t points) {
 }
 
 EvolutionSetup prepare_evolution(const SkeletonGraph& graph, const PointCloud& cloud, const InitialMeshOptions& options,
-                                 size_t leaf_size, const std::string& source) {
+                                 size_t leaf_size, const std::string& source, SetupScope scope, StageTimer* timer) {
+  StageTimer own_timer;
+  StageTimer& stages = timer ? *timer : own_timer;
   EvolutionSetup setup;
-  PointIndex<float> cloud_index(cloud.points);
-  setup.bones = assign_points_to_bones(graph, cloud, source, &cloud_index);
+  // The index serves the radii and the initial mesh, then goes before the cells are built.
+  auto cloud_index = stages.run("point_index", [&] { return std::make_unique<PointIndex<float>>(cloud.points); });
+  setup.bones = stages.run("radius", [&] { return assign_points_to_bones(graph, cloud, source, cloud_index.get()); });
   setup.median_radius = median_bone_radius(setup.bones);
-  setup.initial = build_initial_mesh(graph, setup.bones, cloud, options, source, &cloud_index);
-  setup.cells = build_cell_tree(cloud, cell_leaf_size(leaf_size, cloud.size()));
+  setup.bones.release_per_point();  // only the radii are needed from here on
+  setup.initial = stages.run("initial_mesh", [&] {
+    return build_initial_mesh(graph, setup.bones, cloud, options, source, cloud_index.get());
+  });
+  cloud_index.reset();
+  if (scope == SetupScope::kInitialMesh) return setup;
+  setup.cells = stages.run("cells", [&] { return build_cell_tree(cloud, cell_leaf_size(leaf_size, cloud.size())); });
+  // nanoflann allocates its tree nodes in small pooled blocks that glibc
+  // keeps after they are freed (about 70 MiB at 10^7 points); give them
+  // back before the device and the metrics add their own.
+  malloc_trim(0);
+  if (scope == SetupScope::kCells) return setup;
   setup.arrays = flatten_mesh(setup.initial.mesh);
-  setup.regions = build_skeleton_regions(setup.initial.skeleton, setup.cells, setup.arrays, setup.median_radius);
+  setup.regions = stages.run("regions", [&] {
+    return build_skeleton_regions(setup.initial.skeleton, setup.cells, setup.arrays, setup.median_radius);
+  });
   return setup;
 }
 

@@ -8,6 +8,7 @@
 #include "core/point_index.h"
 #include "mesh/initial_mesh.h"
 #include "mesh/mesh_arrays.h"
+#include "pipeline/stage_timer.h"
 #include "skeleton/bone_assignment.h"
 #include "skeleton/skeleton_graph.h"
 
@@ -29,12 +30,15 @@ double automatic_epsilon(double median_radius);
 //! arrays would outgrow the cloud itself (docs/PERFORMANCE.md).
 size_t cell_leaf_size(size_t requested, size_t points);
 
+//! How far prepare_evolution goes: the initial mesh alone (mcquad init),
+//! with the cells too (measuring a mesh), or everything the evolution needs.
+enum class SetupScope { kInitialMesh, kCells, kEvolution };
+
 //! Everything the evolution starts from, built from a cloud and its
 //! skeleton graph: radii, the initial mesh, the cells and the flat arrays.
-//! The pipeline runs the same stages one by one with timings (pipeline/fit.cpp);
-//! tests and benchmarks take them in one call.
+//! Members past the scope asked for stay empty.
 struct EvolutionSetup {
-  BoneAssignment bones;
+  BoneAssignment bones;  //!< the radii only (per-point assignments released)
   double median_radius = 0;
   InitialMesh initial;
   CellTree cells;
@@ -42,8 +46,14 @@ struct EvolutionSetup {
   SkeletonRegions regions;
 };
 
+//! The one stage sequence from a skeleton graph to the evolution's inputs,
+//! each stage run under `timer`: point_index, radius, initial_mesh, cells,
+//! regions. The fit, `mcquad metrics`, the tests and the benchmarks all
+//! call it. The point index is freed before the cells are built, so the
+//! two trees over the cloud never coexist (docs/PERFORMANCE.md, memory).
 //! `leaf_size` as in cell_leaf_size (0: automatic).
 EvolutionSetup prepare_evolution(const SkeletonGraph& graph, const PointCloud& cloud, const InitialMeshOptions& options,
-                                 size_t leaf_size, const std::string& source);
+                                 size_t leaf_size, const std::string& source, SetupScope scope = SetupScope::kEvolution,
+                                 StageTimer* timer = nullptr);
 
 }  // namespace mcquad

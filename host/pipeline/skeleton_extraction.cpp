@@ -3,37 +3,53 @@
 #include <chrono>
 
 #include "io/point_cloud_io.h"
-#include "skeleton/skeleton_graph.h"
 
 namespace mcquad {
 
-nlohmann::json skeleton_report(const ExtractedSkeleton& extracted, const std::string& points_name, double seconds) {
+SkeletonReport skeleton_report(const ExtractedSkeleton& extracted, const std::string& points_name, double seconds) {
   SkeletonGraph graph = build_skeleton_graph(extracted.skeleton, "the skeleton extracted from " + points_name, 0.0);
-  nlohmann::json nodes = nlohmann::json::array();
-  int junctions = 0, ends = 0;
+  SkeletonReport report;
+  report.points = points_name;
+  report.positions = extracted.skeleton.nodes;
+  report.radii = extracted.radii;
   for (size_t v = 0; v < extracted.skeleton.nodes.size(); ++v) {
-    const Eigen::Vector3d& p = extracted.skeleton.nodes[v];
     NodeKind kind = graph.kind(int(v));
-    junctions += kind == NodeKind::kJunction;
-    ends += kind == NodeKind::kEnd;
-    nodes.push_back({{"position", {p.x(), p.y(), p.z()}},
-                     {"radius", extracted.radii[v]},
-                     {"kind", kind == NodeKind::kEnd ? "end" : kind == NodeKind::kJunction ? "junction" : "regular"},
-                     {"degree", graph.degree(int(v))}});
+    report.kinds.push_back(kind);
+    report.degrees.push_back(graph.degree(int(v)));
+    report.junctions += kind == NodeKind::kJunction;
+    report.ends += kind == NodeKind::kEnd;
   }
-  int cycles = 0;
-  for (int c = 0; c < graph.component_count; ++c) cycles += graph.independent_cycles(c);
-  return {{"points", points_name},
+  for (int c = 0; c < graph.component_count; ++c) report.independent_cycles += graph.independent_cycles(c);
+  report.bones = extracted.skeleton.edges.size();
+  report.components = graph.component_count;
+  report.voxel_size = extracted.voxel_size;
+  report.voxels = extracted.voxels;
+  report.discarded_voxels = extracted.discarded_voxels;
+  report.seconds = seconds;
+  return report;
+}
+
+nlohmann::json to_json(const SkeletonReport& r) {
+  nlohmann::json nodes = nlohmann::json::array();
+  for (size_t v = 0; v < r.positions.size(); ++v) {
+    const Eigen::Vector3d& p = r.positions[v];
+    NodeKind kind = r.kinds[v];
+    nodes.push_back({{"position", {p.x(), p.y(), p.z()}},
+                     {"radius", r.radii[v]},
+                     {"kind", kind == NodeKind::kEnd ? "end" : kind == NodeKind::kJunction ? "junction" : "regular"},
+                     {"degree", r.degrees[v]}});
+  }
+  return {{"points", r.points},
           {"nodes", nodes},
-          {"bones", extracted.skeleton.edges.size()},
-          {"junctions", junctions},
-          {"ends", ends},
-          {"independent_cycles", cycles},
-          {"components", graph.component_count},
-          {"voxel_size", extracted.voxel_size},
-          {"voxels", extracted.voxels},
-          {"discarded_voxels", extracted.discarded_voxels},
-          {"seconds", seconds}};
+          {"bones", r.bones},
+          {"junctions", r.junctions},
+          {"ends", r.ends},
+          {"independent_cycles", r.independent_cycles},
+          {"components", r.components},
+          {"voxel_size", r.voxel_size},
+          {"voxels", r.voxels},
+          {"discarded_voxels", r.discarded_voxels},
+          {"seconds", r.seconds}};
 }
 
 ExtractedSkeleton extract_skeleton_timed(const PointCloud& cloud, const std::string& name,

@@ -2,14 +2,33 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "skeleton/cloud_skeleton.h"
+#include "skeleton/skeleton_graph.h"
 
 namespace mcquad {
 
-//! The report of an extraction: per node its position, radius and kind;
-//! junctions, ends, cycles and components; the voxel graph it was made on.
-nlohmann::json skeleton_report(const ExtractedSkeleton& extracted, const std::string& points_name, double seconds);
+//! The report of an extraction: per node its position, radius, kind and
+//! degree; junctions, ends, cycles and components; the voxel graph it was
+//! made on.
+struct SkeletonReport {
+  std::string points;
+  std::vector<Eigen::Vector3d> positions;
+  std::vector<double> radii;
+  std::vector<NodeKind> kinds;
+  std::vector<int> degrees;
+  size_t bones = 0;
+  int junctions = 0, ends = 0, independent_cycles = 0, components = 0;
+  double voxel_size = 0;
+  size_t voxels = 0, discarded_voxels = 0;
+  double seconds = 0;  //!< the extraction's (the reading excluded)
+};
+
+SkeletonReport skeleton_report(const ExtractedSkeleton& extracted, const std::string& points_name, double seconds);
+
+//! The report as `mcquad skeleton --report` writes it (and fit's "skeleton_extraction").
+nlohmann::json to_json(const SkeletonReport& report);
 
 //! extract_skeleton, its time (seconds) given too: for the report.
 ExtractedSkeleton extract_skeleton_timed(const PointCloud& cloud, const std::string& name,

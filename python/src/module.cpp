@@ -65,7 +65,7 @@ py::tuple fit_arrays(FloatArray points, const py::object& normals, DoubleArray n
     py::gil_scoped_release release;
     result = run_fit(std::move(input), fit_options);
   }
-  return py::make_tuple(vertices_of(result.mesh), faces_of(result.mesh), parse_json(result.report.dump()));
+  return py::make_tuple(vertices_of(result.mesh), faces_of(result.mesh), parse_json(to_json(result.report).dump()));
 }
 
 py::tuple read_points(const std::string& path) {
@@ -97,7 +97,7 @@ py::tuple extract_skeleton_arrays(FloatArray points, const std::string& name, si
   py::array_t<double> radii(py::ssize_t(extracted.radii.size()));
   std::copy(extracted.radii.begin(), extracted.radii.end(), radii.mutable_data());
   return py::make_tuple(nodes_of(extracted.skeleton), edges_of(extracted.skeleton), radii,
-                        parse_json(skeleton_report(extracted, name, seconds).dump()));
+                        parse_json(to_json(skeleton_report(extracted, name, seconds)).dump()));
 }
 
 py::tuple read_skeleton_arrays(const std::string& path) {
@@ -142,12 +142,12 @@ py::object surfaces_json(DoubleArray vertices, IndexArray faces, const std::stri
   outputs.control_nets_path = control_nets;
   outputs.tangent_tolerance_degrees = tangent_tolerance;
   outputs.units = units;
-  nlohmann::json report;
+  SurfaceReport report;
   {
     py::gil_scoped_release release;
     report = export_surfaces(mesh, cloud.get(), outputs);
   }
-  return parse_json(report.dump());
+  return parse_json(to_json(report).dump());
 }
 
 py::dict generate(const std::string& name, const py::object& directory, const py::dict& options) {

@@ -46,11 +46,16 @@ Field<Options> degrees(Inner Options::*inner, double Inner::*member) {
           [inner, member](Options& o, const py::handle& v) { o.*inner.*member = v.cast<double>() * kDegree; }};
 }
 
-template <typename Options, typename Enum>
-Field<Options> word(std::function<Enum&(Options&)> field, std::function<std::string(const Options&)> name,
-                    Enum (*from_name)(const std::string&, const std::string&), const char* option) {
-  return {[name](const Options& o) { return py::cast(name(o)); },
-          [field, from_name, option](Options& o, const py::handle& v) { field(o) = from_name(v.cast<std::string>(), option); }};
+//! A field given as one of its option's words (pipeline/fit_options.h).
+template <typename Options, typename Value>
+Field<Options> word(Value& (*field)(Options&), const OptionWords<Value>& (*words)(), const char* option) {
+  return {[field, words](const Options& o) {
+            Options copy = o;  // the accessor is the setter's; options are small
+            return py::cast(std::string(word_of(field(copy), words())));
+          },
+          [field, words, option](Options& o, const py::handle& v) {
+            field(o) = value_of_word(v.cast<std::string>(), option, words());
+          }};
 }
 
 const FieldTable<FitOptions>& fit_fields() {
@@ -58,30 +63,17 @@ const FieldTable<FitOptions>& fit_fields() {
   using E = EvolutionParameters;
   using I = InitialMeshOptions;
   static const FieldTable<O> table = {
-      {"ends", word<O, EndMode>([](O& o) -> EndMode& { return o.initial.ends; },
-                                [](const O& o) { return o.initial.ends == EndMode::kOpen ? "open"
-                                                        : o.initial.ends == EndMode::kCapped ? "capped" : "auto"; },
-                                end_mode_from_name, "ends")},
+      {"ends", word<O, EndMode>([](O& o) -> EndMode& { return o.initial.ends; }, end_mode_words, "ends")},
       {"start_fraction", nested(&O::initial, &I::start_fraction)},
       {"resolution", nested(&O::initial, &I::resolution)},
       {"target_vertices", nested(&O::initial, &I::target_vertices)},
       {"min_junction_angle", degrees(&O::initial, &I::min_junction_angle)},
       {"write_skeleton", plain(&O::construction_skeleton)},
-      {"backend", word<O, BackendKind>([](O& o) -> BackendKind& { return o.backend; },
-                                       [](const O& o) { return o.backend == BackendKind::kSerial ? "serial"
-                                                               : o.backend == BackendKind::kOpenCL ? "opencl" : "auto"; },
-                                       backend_from_name, "backend")},
+      {"backend", word<O, BackendKind>([](O& o) -> BackendKind& { return o.backend; }, backend_words, "backend")},
       {"device", plain(&O::device)},
-      {"mode", word<O, E::Mode>([](O& o) -> E::Mode& { return o.evolution.mode; },
-                                [](const O& o) { return o.evolution.mode == E::Mode::kPaper ? "paper" : "robust"; },
-                                evolution_mode_from_name, "mode")},
+      {"mode", word<O, E::Mode>([](O& o) -> E::Mode& { return o.evolution.mode; }, evolution_mode_words, "mode")},
       {"relaxation", nested(&O::evolution, &E::relaxation)},
-      {"projection", {[](const O& o) { return py::cast(o.evolution.mean_projection ? "mean" : "min"); },
-                      [](O& o, const py::handle& v) {
-                        auto name = v.cast<std::string>();
-                        if (name != "mean" && name != "min") throw InputError("projection: '" + name + "' is not one of mean, min");
-                        o.evolution.mean_projection = name == "mean";
-                      }}},
+      {"projection", word<O, bool>([](O& o) -> bool& { return o.evolution.mean_projection; }, projection_words, "projection")},
       {"fill_holes", nested(&O::evolution, &E::fill_holes)},
       {"crossing_guard", nested(&O::evolution, &E::crossing_guard)},
       {"held_back_relaxation", nested(&O::evolution, &E::held_back_relaxation)},

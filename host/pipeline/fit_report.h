@@ -1,0 +1,67 @@
+#pragma once
+
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "evolution/evolve.h"
+#include "metrics/mesh_metrics.h"
+#include "metrics/verdict.h"
+#include "pipeline/fit_options.h"
+#include "pipeline/skeleton_extraction.h"
+#include "pipeline/stage_timer.h"
+#include "pipeline/surfaces.h"
+
+namespace mcquad {
+
+//! What a fit did, typed: the CLI prints from it, the Python package and
+//! `--report` get it as JSON through to_json, the one place it is spelled.
+struct FitReport {
+  struct Inputs {
+    std::string points, skeleton;  //!< names as errors give them
+    size_t point_count = 0, skeleton_nodes = 0, skeleton_bones = 0;
+    int skeleton_components = 0;
+  };
+  //! The options as used: automatic values resolved.
+  struct Parameters {
+    FitOptions options;
+    double epsilon = 0, median_radius = 0;
+    size_t leaf_size = 0;
+  };
+  struct InitialMeshSummary {
+    int open_ends = 0, refinement_levels = 0;
+    MeshStatistics statistics;
+  };
+  struct Cells {
+    size_t cells = 0, tree_nodes = 0;
+    int depth = 0;
+    double megabytes = 0;
+  };
+  struct Evolution {
+    std::string backend, device;
+    double initial_error_level = 0;
+    std::vector<IterationRecord> iterations;
+    std::string stop_reason;
+    double final_error_level() const { return iterations.empty() ? initial_error_level : iterations.back().error_level; }
+  };
+
+  Inputs inputs;
+  Parameters parameters;
+  std::optional<SkeletonReport> skeleton_extraction;  //!< when no skeleton was given
+  InitialMeshSummary initial_mesh;
+  std::optional<Cells> cells;                         //!< when built (fit, or init measuring)
+  std::optional<Evolution> evolution;                 //!< mcquad fit, not mcquad init
+  std::optional<QualityMetrics> metrics;              //!< when measured
+  std::optional<Verdict> verdict;                     //!< when measured
+  std::optional<SurfaceReport> surfaces;              //!< when B-spline surfaces were asked for
+  std::map<std::string, StageTimer::Record> stages;   //!< every stage run, by name
+  double peak_resident_megabytes = 0;
+  std::string output_mesh;  //!< the mesh file's absolute path, once written (empty: not written)
+};
+
+//! The report as `--report` writes it.
+nlohmann::json to_json(const FitReport& report);
+
+}  // namespace mcquad
