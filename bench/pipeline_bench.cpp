@@ -185,7 +185,8 @@ void BM_CrossingGuard(benchmark::State& state) {
 
 void BM_Metrics(benchmark::State& state) {
   Prepared& p = prepared(kPaperPoints, 0);
-  for (auto _ : state) benchmark::DoNotOptimize(measure_quality(p.setup.initial.mesh, p.cloud, p.setup.cells, &p.graph));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(measure_quality(p.setup.initial.mesh, p.cloud, p.setup.cells, &p.graph));
 }
 
 void BM_WriteMesh(benchmark::State& state) {

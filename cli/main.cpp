@@ -77,10 +77,7 @@ CLI::Option* add_word_option(CLI::App* app, const std::string& name, Value& valu
         return "'" + input + "' is not one of " + accepted;
       },
       "");
-  return app->add_option(name, value, help)
-      ->transform(to_value)
-      ->type_name("WORD")
-      ->default_str(word_of(value, words));
+  return app->add_option(name, value, help)->transform(to_value)->type_name("WORD")->default_str(word_of(value, words));
 }
 
 struct FitCommand {
@@ -92,70 +89,104 @@ struct FitCommand {
 
   void add_options(CLI::App* app, bool evolution) {
     app->add_option("POINTS", points, "point cloud (.ply, .xyz, .txt, .csv, .obj, .off)")->required();
-    app->add_option("SKELETON", skeleton,
-                    "skeleton (.obj with v/l lines, or CGAL polylines .cgal/.polylines/.txt); none: extracted from the cloud "
-                    "(as by mcquad skeleton)");
-    app->add_option("-o,--output", output, "output mesh (.obj, .off, .ply, .om; .stl binary or .stla ASCII, triangulated)")->required();
+    app->add_option(
+        "SKELETON", skeleton,
+        "skeleton (.obj with v/l lines, or CGAL polylines .cgal/.polylines/.txt); none: extracted from the cloud "
+        "(as by mcquad skeleton)");
+    app->add_option("-o,--output", output,
+                    "output mesh (.obj, .off, .ply, .om; .stl binary or .stla ASCII, triangulated)")
+        ->required();
     app->add_option("--report", report, "write a JSON report here");
     if (evolution)
-      app->add_option("--html", html, "write a self-contained HTML report here (the meshes, cloud and verdict to turn around)");
+      app->add_option("--html", html,
+                      "write a self-contained HTML report here (the meshes, cloud and verdict to turn around)");
     auto& init = options.initial;
     add_word_option(app, "--ends", init.ends, end_mode_words(), "ends: auto (decided from the cloud), open or capped");
-    app->add_option("--start-fraction", init.start_fraction, "initial mesh radius as a fraction of the local cloud radius")
-        ->check(range("start_fraction"))->capture_default_str();
-    app->add_option("--resolution", init.resolution, "target edge length of the refined mesh (0 = 16 vertices around a tube)")
-        ->check(range("resolution"))->capture_default_str();
+    app->add_option("--start-fraction", init.start_fraction,
+                    "initial mesh radius as a fraction of the local cloud radius")
+        ->check(range("start_fraction"))
+        ->capture_default_str();
+    app->add_option("--resolution", init.resolution,
+                    "target edge length of the refined mesh (0 = 16 vertices around a tube)")
+        ->check(range("resolution"))
+        ->capture_default_str();
     app->add_option("--target-vertices", init.target_vertices, "refine until at least this many vertices (0 = off)")
         ->capture_default_str();
     app->add_option("--min-junction-angle", junction_degrees,
                     "junctions whose bones fork more acutely move to where the cloud's tubes part (0 = never)")
-        ->check(range("min_junction_angle"))->capture_default_str();
+        ->check(range("min_junction_angle"))
+        ->capture_default_str();
     app->add_option("--write-skeleton", options.construction_skeleton, "write the skeleton the mesh is built on (OBJ)");
     if (!evolution) {
-      add_word_option(app, "--stage", init.stage, construction_stage_words(), "stop after: blocks, extruded or refined");
+      add_word_option(app, "--stage", init.stage, construction_stage_words(),
+                      "stop after: blocks, extruded or refined");
       return;
     }
     app->add_flag("--strict", strict, "exit with code 7 (after writing the outputs) when a check of the verdict fails");
     auto& e = options.evolution;
-    add_word_option(app, "--backend", options.backend, backend_words(), "auto (OpenCL if a device exists), serial or opencl");
-    app->add_option("--device", options.device, "OpenCL device index or name (default: $MCQUAD_DEVICE, else first GPU, else first device)");
+    add_word_option(app, "--backend", options.backend, backend_words(),
+                    "auto (OpenCL if a device exists), serial or opencl");
+    app->add_option("--device", options.device,
+                    "OpenCL device index or name (default: $MCQUAD_DEVICE, else first GPU, else first device)");
     add_word_option(app, "--mode", e.mode, evolution_mode_words(),
                     "robust (improvements over the paper, docs/DESIGN.md) or paper (the paper's step exactly)");
-    app->add_option("--relaxation", e.relaxation, "robust mode: tangential relaxation weight before each step (0 = off)")
-        ->check(range("relaxation"))->capture_default_str();
+    app->add_option("--relaxation", e.relaxation,
+                    "robust mode: tangential relaxation weight before each step (0 = off)")
+        ->check(range("relaxation"))
+        ->capture_default_str();
     add_word_option(app, "--projection", e.mean_projection, projection_words(),
                     "robust mode: a cell's distance along a ray from its samples: mean, or min (the paper's)");
     add_word_option(app, "--fill-holes", e.fill_holes, on_off_words(),
                     "robust mode: vertices that find no cell take their neighbours' offset (on, off)");
-    add_word_option(app, "--crossing-guard", e.crossing_guard, on_off_words(),
-                    "robust mode: shorten moves that make faces cross or fold, turn over or lose shape, after each step (on, off)");
+    add_word_option(
+        app, "--crossing-guard", e.crossing_guard, on_off_words(),
+        "robust mode: shorten moves that make faces cross or fold, turn over or lose shape, after each step (on, off)");
     app->add_option("--held-back-relaxation", e.held_back_relaxation,
                     "robust mode: tangential relaxation weight for the vertices the crossing guard held back (0 = off)")
-        ->check(range("held_back_relaxation"))->capture_default_str();
+        ->check(range("held_back_relaxation"))
+        ->capture_default_str();
     add_word_option(app, "--own-cells", e.own_cells, on_off_words(),
                     "robust mode: a vertex sees only the cells of the bones near its own (on, off)");
     add_word_option(app, "--local-epsilon", e.local_epsilon, on_off_words(),
                     "robust mode: epsilon and the ray reach scale with the local radius (on, off)");
     app->add_option("--hit-band", e.hit_band,
-                    "robust mode: a ray averages every cell within this fraction of epsilon of its first hit (0 = the first cell only)")
-        ->check(range("hit_band"))->capture_default_str();
+                    "robust mode: a ray averages every cell within this fraction of epsilon of its first hit (0 = the "
+                    "first cell only)")
+        ->check(range("hit_band"))
+        ->capture_default_str();
     app->add_option("--iterations", e.iterations, "maximal number of iterations")->capture_default_str();
-    app->add_option("--tolerance", e.tolerance, "stop when the error level improves by less than this fraction (0 = never)")
-        ->check(range("tolerance"))->capture_default_str();
+    app->add_option("--tolerance", e.tolerance,
+                    "stop when the error level improves by less than this fraction (0 = never)")
+        ->check(range("tolerance"))
+        ->capture_default_str();
     app->add_option("--seed", e.seed, "random seed")->capture_default_str();
     app->add_option("--cones", e.cones, "c: number of cones")->check(range("cones"))->capture_default_str();
-    app->add_option("--generators", e.generators, "r: rays per cone")->check(range("generators"))->capture_default_str();
-    app->add_option("--alpha-max", alpha_degrees, "maximal cone half angle, degrees")->check(range("alpha_max"))->capture_default_str();
-    app->add_option("--samples", e.samples, "m: random samples per hit cell")->check(range("samples"))->capture_default_str();
+    app->add_option("--generators", e.generators, "r: rays per cone")
+        ->check(range("generators"))
+        ->capture_default_str();
+    app->add_option("--alpha-max", alpha_degrees, "maximal cone half angle, degrees")
+        ->check(range("alpha_max"))
+        ->capture_default_str();
+    app->add_option("--samples", e.samples, "m: random samples per hit cell")
+        ->check(range("samples"))
+        ->capture_default_str();
     app->add_option("--epsilon", e.epsilon, "feasibility bound and ray reach (0 = 0.6 x median local radius)")
-        ->check(range("epsilon"))->capture_default_str();
-    app->add_option("--leaf-size", options.leaf_size, "maximal points per cell (0 = 6, growing in proportion above 2 million points)")
-        ->check(range("leaf_size"))->capture_default_str();
-    app->add_option("--snapshots", options.snapshots_directory, "write the mesh after every iteration into this directory");
-    app->add_option("--surfaces", options.surfaces.cad_path, "also write the final mesh as B-spline surfaces (.step, .stp, .iges, .igs)");
-    app->add_option("--control-nets", options.surfaces.control_nets_path, "also write the surfaces' control nets (.obj, .off, .ply, .om)");
-    app->add_option("--units", options.surfaces.units, "the length unit the CAD file declares; the coordinates are written as they are")
-        ->check(CLI::IsMember({"mm", "cm", "m", "um", "in", "ft"}))->capture_default_str();
+        ->check(range("epsilon"))
+        ->capture_default_str();
+    app->add_option("--leaf-size", options.leaf_size,
+                    "maximal points per cell (0 = 6, growing in proportion above 2 million points)")
+        ->check(range("leaf_size"))
+        ->capture_default_str();
+    app->add_option("--snapshots", options.snapshots_directory,
+                    "write the mesh after every iteration into this directory");
+    app->add_option("--surfaces", options.surfaces.cad_path,
+                    "also write the final mesh as B-spline surfaces (.step, .stp, .iges, .igs)");
+    app->add_option("--control-nets", options.surfaces.control_nets_path,
+                    "also write the surfaces' control nets (.obj, .off, .ply, .om)");
+    app->add_option("--units", options.surfaces.units,
+                    "the length unit the CAD file declares; the coordinates are written as they are")
+        ->check(CLI::IsMember({"mm", "cm", "m", "um", "in", "ft"}))
+        ->capture_default_str();
   }
 
   int run(bool evolution) {
@@ -164,7 +195,8 @@ struct FitCommand {
     if (!html.empty()) check_output_path(html, {"html"});
     if (!html.empty()) check_three_js();
     if (!options.surfaces.cad_path.empty()) check_output_path(options.surfaces.cad_path, kCadExtensions);
-    if (!options.surfaces.control_nets_path.empty()) check_output_path(options.surfaces.control_nets_path, kMeshExtensions);
+    if (!options.surfaces.control_nets_path.empty())
+      check_output_path(options.surfaces.control_nets_path, kMeshExtensions);
     options.evolve = evolution;
     options.evolution.alpha_max = alpha_degrees * M_PI / 180.0;
     options.initial.min_junction_angle = junction_degrees * M_PI / 180.0;
@@ -197,19 +229,22 @@ struct FitCommand {
 
   void print_summary(const FitReport& r) const {
     const MeshStatistics& m = r.metrics ? r.metrics->statistics : r.initial_mesh.statistics;
-    std::printf("mesh: %s (%zu vertices, %zu faces, Euler characteristic %ld, %zu irregular vertices)\n", output.c_str(),
-                m.vertices, m.faces, m.euler_characteristic, m.irregular_vertices);
+    std::printf("mesh: %s (%zu vertices, %zu faces, Euler characteristic %ld, %zu irregular vertices)\n",
+                output.c_str(), m.vertices, m.faces, m.euler_characteristic, m.irregular_vertices);
     if (r.evolution) {
       const FitReport::Evolution& e = *r.evolution;
-      std::printf("backend: %s on %s; error level (mean distance to the cloud's local planes) %.4g -> %.4g after %zu iterations\n",
-                  e.backend.c_str(), e.device.c_str(), e.initial_error_level, e.final_error_level(), e.iterations.size());
+      std::printf(
+          "backend: %s on %s; error level (mean distance to the cloud's local planes) %.4g -> %.4g after %zu "
+          "iterations\n",
+          e.backend.c_str(), e.device.c_str(), e.initial_error_level, e.final_error_level(), e.iterations.size());
     }
     if (r.evolution && r.metrics) {
       const QualityMetrics& q = *r.metrics;
-      std::printf("distances: vertices to their nearest cloud point mean %.4g, 95 %% within %.4g; cloud points to the mesh "
-                  "mean %.4g, 95 %% within %.4g; %zu pairs of faces cross\n",
-                  q.mesh_to_cloud.mean, q.mesh_to_cloud.p95, q.cloud_to_mesh.mean, q.cloud_to_mesh.p95,
-                  q.intersecting_face_pairs);
+      std::printf(
+          "distances: vertices to their nearest cloud point mean %.4g, 95 %% within %.4g; cloud points to the mesh "
+          "mean %.4g, 95 %% within %.4g; %zu pairs of faces cross\n",
+          q.mesh_to_cloud.mean, q.mesh_to_cloud.p95, q.cloud_to_mesh.mean, q.cloud_to_mesh.p95,
+          q.intersecting_face_pairs);
     }
     if (r.surfaces && r.surfaces->cad_file) print_surface_summary(*r.surfaces, true);
     if (!report.empty()) std::printf("report: %s\n", report.c_str());
@@ -237,9 +272,10 @@ int run_skeleton(const std::string& points_path, const std::string& output, cons
   SkeletonReport report = skeleton_report(extracted, points_path, seconds);
   write_skeleton_obj(output, extracted.skeleton);
   if (!json_path.empty()) write_text_atomically(json_path, to_json(report).dump(2) + "\n");
-  std::printf("skeleton: %s (%zu nodes, %zu bones: %d junctions, %d ends, %d independent cycles, %d components) in %.3g s\n",
-              output.c_str(), extracted.skeleton.nodes.size(), extracted.skeleton.edges.size(), report.junctions, report.ends,
-              report.independent_cycles, report.components, seconds);
+  std::printf(
+      "skeleton: %s (%zu nodes, %zu bones: %d junctions, %d ends, %d independent cycles, %d components) in %.3g s\n",
+      output.c_str(), extracted.skeleton.nodes.size(), extracted.skeleton.edges.size(), report.junctions, report.ends,
+      report.independent_cycles, report.components, seconds);
   if (!json_path.empty()) std::printf("report: %s\n", json_path.c_str());
   return kExitOk;
 }
@@ -291,15 +327,16 @@ void print_surface_summary(const SurfaceReport& report, bool with_cloud) {
   const SurfaceChecks& checks = report.checks;
   if (report.cad_file) {
     const CadFileReport& file = *report.cad_file;
-    std::printf("surfaces: %s (%zu B-spline faces read back, %zu periodic; units: %s; %zu shell(s), %s, %zu free edges)\n",
-                file.path.c_str(), file.read_back.faces, checks.periodic_surfaces, file.units.c_str(),
-                file.read_back.shells, file.read_back.valid ? "valid" : "NOT VALID", file.read_back.free_edges);
+    std::printf(
+        "surfaces: %s (%zu B-spline faces read back, %zu periodic; units: %s; %zu shell(s), %s, %zu free edges)\n",
+        file.path.c_str(), file.read_back.faces, checks.periodic_surfaces, file.units.c_str(), file.read_back.shells,
+        file.read_back.valid ? "valid" : "NOT VALID", file.read_back.free_edges);
   }
-  std::printf("seams: %zu edges, position gap %.3g, tangent-continuous within %.3g deg on %zu, max normal gap %.3g deg "
-              "(%.3g deg on smooth parts of the mesh two or more edges from irregular vertices)\n",
-              checks.seam_edges, checks.max_position_gap, checks.tangent_tolerance_degrees,
-              checks.seam_edges_within_tolerance, checks.max_normal_gap_degrees,
-              checks.max_normal_gap_away_from_irregular_degrees);
+  std::printf(
+      "seams: %zu edges, position gap %.3g, tangent-continuous within %.3g deg on %zu, max normal gap %.3g deg "
+      "(%.3g deg on smooth parts of the mesh two or more edges from irregular vertices)\n",
+      checks.seam_edges, checks.max_position_gap, checks.tangent_tolerance_degrees, checks.seam_edges_within_tolerance,
+      checks.max_normal_gap_degrees, checks.max_normal_gap_away_from_irregular_degrees);
   std::printf("distance to the quad mesh: mean %.4g p95 %.4g max %.4g\n", checks.to_mesh.mean, checks.to_mesh.p95,
               checks.to_mesh.max);
   if (with_cloud)
@@ -344,33 +381,50 @@ int main(int argc, char** argv) {
   std::string shape_name, shape_dir;
   ShapeOptions shape_options;
   std::string shape_help = "synthetic clouds with skeletons and true surfaces:";
-  for (const auto& [name, what] : shape_catalogue()) shape_help += "\n  " + name + ": " + what;
+  for (const auto& [name, what] : shape_catalogue()) shape_help.append("\n  ").append(name).append(": ").append(what);
   auto* generate_app = app.add_subcommand("generate", shape_help);
   generate_app->add_option("NAME", shape_name, "shape name")->required();
   generate_app->add_option("-o,--output", shape_dir, "output directory")->required();
-  generate_app->add_option("--points", shape_options.points, "number of points (0 = the shape's default)")->capture_default_str();
+  generate_app->add_option("--points", shape_options.points, "number of points (0 = the shape's default)")
+      ->capture_default_str();
   generate_app->add_option("--noise", shape_options.noise, "noise along the normal, fraction of the tube radius")
-      ->check(CLI::NonNegativeNumber)->capture_default_str();
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   generate_app->add_option("--seed", shape_options.seed, "random seed")->capture_default_str();
-  generate_app->add_option("--angle", shape_options.angle_degrees, "y-fork: angle between the branches (0 = 60); fan: between neighbours (0 = 30); degrees")
-      ->check(CLI::Range(0.0, 175.0))->capture_default_str();
-  generate_app->add_option("--arms", shape_options.arms, "star, planar-star: junction valence (3..16)")->check(CLI::Range(3, 16))->capture_default_str();
-  generate_app->add_option("--outliers", shape_options.outliers, "fraction of points replaced by outliers off the surface")
-      ->check(CLI::Range(0.0, 0.5))->capture_default_str();
+  generate_app
+      ->add_option("--angle", shape_options.angle_degrees,
+                   "y-fork: angle between the branches (0 = 60); fan: between neighbours (0 = 30); degrees")
+      ->check(CLI::Range(0.0, 175.0))
+      ->capture_default_str();
+  generate_app->add_option("--arms", shape_options.arms, "star, planar-star: junction valence (3..16)")
+      ->check(CLI::Range(3, 16))
+      ->capture_default_str();
+  generate_app
+      ->add_option("--outliers", shape_options.outliers, "fraction of points replaced by outliers off the surface")
+      ->check(CLI::Range(0.0, 0.5))
+      ->capture_default_str();
   generate_app->add_option("--density-ratio", shape_options.density_ratio, "density falls along x by this factor")
-      ->check(CLI::Range(1.0, 1000.0))->capture_default_str();
+      ->check(CLI::Range(1.0, 1000.0))
+      ->capture_default_str();
   generate_app->add_option("--holes", shape_options.holes, "patches of radius r left without points")
-      ->check(CLI::Range(0, 100))->capture_default_str();
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
 
   std::string skeleton_points, skeleton_output, skeleton_json;
   SkeletonExtractionOptions skeleton_options;
   auto* skeleton_app = app.add_subcommand("skeleton", "a curve skeleton of a point cloud, for fit (docs/SKELETON.md)");
-  skeleton_app->add_option("POINTS", skeleton_points, "point cloud (.ply, .xyz, .txt, .csv, .obj, .off); normals are not needed")->required();
+  skeleton_app
+      ->add_option("POINTS", skeleton_points,
+                   "point cloud (.ply, .xyz, .txt, .csv, .obj, .off); normals are not needed")
+      ->required();
   skeleton_app->add_option("-o,--output", skeleton_output, "output skeleton (.obj: v and l lines)")->required();
-  skeleton_app->add_option("--report", skeleton_json, "write a JSON report here: every node's position, radius and kind");
-  skeleton_app->add_option("--voxels", skeleton_options.target_voxels,
-                           "voxels the cloud is thinned to (0 = a quarter of the points, at most 40000)")
-      ->check(CLI::Range(size_t(0), size_t(2000000)))->capture_default_str();
+  skeleton_app->add_option("--report", skeleton_json,
+                           "write a JSON report here: every node's position, radius and kind");
+  skeleton_app
+      ->add_option("--voxels", skeleton_options.target_voxels,
+                   "voxels the cloud is thinned to (0 = a quarter of the points, at most 40000)")
+      ->check(CLI::Range(size_t(0), size_t(2000000)))
+      ->capture_default_str();
 
   app.add_subcommand("devices", "list the OpenCL platforms and devices");
 
@@ -380,26 +434,37 @@ int main(int argc, char** argv) {
   metrics_app->add_option("MESH", metrics_mesh, "mesh (.obj, .off, .ply, .om)")->required();
   metrics_app->add_option("POINTS", metrics_points, "point cloud")->required();
   metrics_app->add_option("--skeleton", metrics_skeleton,
-                          "skeleton: the radius that scales the distance checks, the open ends, and inward faces when the cloud has no normals");
-  metrics_app->add_option("--leaf-size", metrics_leaf, "maximal points per cell, for the error level (0 = as fit chooses)")->capture_default_str();
-  metrics_app->add_option("--surface", metrics_surface, "a generated shape's NAME.surface.json: distances to the true surface");
+                          "skeleton: the radius that scales the distance checks, the open ends, and inward faces when "
+                          "the cloud has no normals");
+  metrics_app
+      ->add_option("--leaf-size", metrics_leaf, "maximal points per cell, for the error level (0 = as fit chooses)")
+      ->capture_default_str();
+  metrics_app->add_option("--surface", metrics_surface,
+                          "a generated shape's NAME.surface.json: distances to the true surface");
   metrics_app->add_option("--json", metrics_json, "also write the metrics here");
   bool metrics_strict = false;
   metrics_app->add_flag("--strict", metrics_strict, "exit with code 7 when a check of the verdict fails");
 
   std::string surfaces_mesh, surfaces_points, surfaces_json;
   SurfaceOutputs surface_outputs;
-  auto* surfaces_app = app.add_subcommand("surfaces", "B-spline surfaces of a quad mesh, written as STEP or IGES (the paper's Fig. 7d)");
+  auto* surfaces_app =
+      app.add_subcommand("surfaces", "B-spline surfaces of a quad mesh, written as STEP or IGES (the paper's Fig. 7d)");
   surfaces_app->add_option("MESH", surfaces_mesh, "quad mesh (.obj, .off, .ply, .om)")->required();
   surfaces_app->add_option("-o,--output", surface_outputs.cad_path, "output (.step, .stp, .iges, .igs)")->required();
   surfaces_app->add_option("--cloud", surfaces_points, "point cloud, to measure the surfaces' distance to it");
-  surfaces_app->add_option("--control-nets", surface_outputs.control_nets_path, "also write the control nets (.obj, .off, .ply, .om)");
-  surfaces_app->add_option("--tangent-tolerance", surface_outputs.tangent_tolerance_degrees,
-                           "normal gap, degrees, under which a seam counts as tangent-continuous")
-      ->check(CLI::Range(0.0, 90.0))->capture_default_str();
+  surfaces_app->add_option("--control-nets", surface_outputs.control_nets_path,
+                           "also write the control nets (.obj, .off, .ply, .om)");
+  surfaces_app
+      ->add_option("--tangent-tolerance", surface_outputs.tangent_tolerance_degrees,
+                   "normal gap, degrees, under which a seam counts as tangent-continuous")
+      ->check(CLI::Range(0.0, 90.0))
+      ->capture_default_str();
   surfaces_app->add_option("--json", surfaces_json, "write the surface report here");
-  surfaces_app->add_option("--units", surface_outputs.units, "the length unit the CAD file declares; the coordinates are written as they are")
-      ->check(CLI::IsMember({"mm", "cm", "m", "um", "in", "ft"}))->capture_default_str();
+  surfaces_app
+      ->add_option("--units", surface_outputs.units,
+                   "the length unit the CAD file declares; the coordinates are written as they are")
+      ->check(CLI::IsMember({"mm", "cm", "m", "um", "in", "ft"}))
+      ->capture_default_str();
 
   std::string report_json, report_mesh, report_html;
   auto* report_app = app.add_subcommand("report", "a fit's JSON report as a self-contained HTML page to look at");
@@ -427,8 +492,9 @@ int main(int argc, char** argv) {
       std::printf("HTML report: %s\n", report_html.c_str());
       return kExitOk;
     }
-    if (*metrics_app) return run_metrics(metrics_mesh, metrics_points, metrics_skeleton, metrics_surface, metrics_leaf, metrics_json,
-                                           metrics_strict);
+    if (*metrics_app)
+      return run_metrics(metrics_mesh, metrics_points, metrics_skeleton, metrics_surface, metrics_leaf, metrics_json,
+                         metrics_strict);
   } catch (const InputError& e) {
     std::fprintf(stderr, "mcquad: error: %s\n", e.what());
     return kExitInput;

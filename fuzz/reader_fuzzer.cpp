@@ -28,9 +28,12 @@ const std::string& scratch_path() {
 void read_once(const std::string& path) {
   using namespace mcquad;
   const std::string reader = MCQUAD_FUZZ_READER;
-  if (reader == "cloud") read_point_cloud(path, true);
-  else if (reader == "skeleton") read_skeleton(path);
-  else read_mesh(path);
+  if (reader == "cloud")
+    read_point_cloud(path, true);
+  else if (reader == "skeleton")
+    read_skeleton(path);
+  else
+    read_mesh(path);
 }
 
 }  // namespace

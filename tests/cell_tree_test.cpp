@@ -272,9 +272,9 @@ TEST(CellTree, CellsInBandMatchBruteForceBehindTheOriginToo) {
       if (child >= 0) continue;
       float t_enter, t_exit;
       const float* b = &cells.node_bounds[6 * node];
-      bool crosses = device::mcq_line_box_interval(
-          device::mcq_make_vec3(b[0] - o.x(), b[1] - o.y(), b[2] - o.z()),
-          device::mcq_make_vec3(b[3] - o.x(), b[4] - o.y(), b[5] - o.z()), inv, &t_enter, &t_exit);
+      bool crosses = device::mcq_line_box_interval(device::mcq_make_vec3(b[0] - o.x(), b[1] - o.y(), b[2] - o.z()),
+                                                   device::mcq_make_vec3(b[3] - o.x(), b[4] - o.y(), b[5] - o.z()), inv,
+                                                   &t_enter, &t_exit);
       // A cell wholly behind the origin, in the band: the half-line never sees it.
       if (crosses && t_exit < 0 && std::find(band_cells, band_cells + count, -1 - child) != band_cells + count)
         behind += 1;

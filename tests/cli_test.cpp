@@ -30,7 +30,8 @@ CliRun mcquad(const std::string& arguments) {
 
 TEST(Cli, VersionAndHelp) {
   EXPECT_EQ(mcquad("--version").code, 0);
-  for (const char* sub : {"fit", "init", "generate", "skeleton", "devices", "metrics", "surfaces"}) EXPECT_EQ(mcquad(std::string(sub) + " --help").code, 0) << sub;
+  for (const char* sub : {"fit", "init", "generate", "skeleton", "devices", "metrics", "surfaces"})
+    EXPECT_EQ(mcquad(std::string(sub) + " --help").code, 0) << sub;
   EXPECT_EQ(mcquad("").code, kExitUsage);
   EXPECT_EQ(mcquad("fit a.ply").code, kExitUsage);
 }
@@ -42,8 +43,8 @@ TEST(Cli, GenerateInitFitMetricsEndToEnd) {
   std::string points = dir.file("t-shape.ply"), skeleton = dir.file("t-shape.skeleton.obj");
   CliRun init = mcquad("init " + points + " " + skeleton + " -o " + dir.file("init.obj") + " --stage extruded");
   EXPECT_EQ(init.code, 0) << init.output;
-  CliRun fit = mcquad("fit " + points + " " + skeleton + " -o " + dir.file("fit.ply") + " --report " + dir.file("r.json") +
-                   " --backend serial --iterations 3 --snapshots " + dir.file("snaps"));
+  CliRun fit = mcquad("fit " + points + " " + skeleton + " -o " + dir.file("fit.ply") + " --report " +
+                      dir.file("r.json") + " --backend serial --iterations 3 --snapshots " + dir.file("snaps"));
   ASSERT_EQ(fit.code, 0) << fit.output;
   EXPECT_TRUE(std::filesystem::exists(dir.file("snaps/iteration-003.obj")));
   std::ifstream report(dir.file("r.json"));
@@ -54,14 +55,15 @@ TEST(Cli, GenerateInitFitMetricsEndToEnd) {
   EXPECT_EQ(json["backend"]["name"], "serial");
   EXPECT_EQ(json["parameters"]["projection"], "mean");  // robust mode's defaults
   EXPECT_EQ(json["parameters"]["fill_holes"], true);
-  CliRun paper_like = mcquad("fit " + points + " " + skeleton + " -o " + dir.file("p.obj") + " --report " + dir.file("p.json") +
-                             " --backend serial --iterations 1 --projection min --fill-holes off");
+  CliRun paper_like = mcquad("fit " + points + " " + skeleton + " -o " + dir.file("p.obj") + " --report " +
+                             dir.file("p.json") + " --backend serial --iterations 1 --projection min --fill-holes off");
   ASSERT_EQ(paper_like.code, 0) << paper_like.output;
   std::ifstream paper_report(dir.file("p.json"));
   auto paper_json = nlohmann::json::parse(paper_report);
   EXPECT_EQ(paper_json["parameters"]["projection"], "min");
   EXPECT_EQ(paper_json["parameters"]["fill_holes"], false);
-  EXPECT_EQ(mcquad("fit " + points + " " + skeleton + " -o " + dir.file("q.obj") + " --projection median").code, kExitUsage);
+  EXPECT_EQ(mcquad("fit " + points + " " + skeleton + " -o " + dir.file("q.obj") + " --projection median").code,
+            kExitUsage);
   CliRun metrics = mcquad("metrics " + dir.file("fit.ply") + " " + points + " --skeleton " + skeleton);
   EXPECT_EQ(metrics.code, 0) << metrics.output;
   EXPECT_NE(metrics.output.find("euler_characteristic"), std::string::npos);
@@ -86,7 +88,9 @@ TEST(Cli, SameSeedSameOutputByteForByte) {
     ASSERT_EQ(mcquad("fit " + inputs + " -o " + dir.file("a.ply") + common).code, 0);
     ASSERT_EQ(mcquad("fit " + inputs + " -o " + dir.file("b.ply") + common).code, 0);
     EXPECT_EQ(file_bytes(dir.file("a.ply")), file_bytes(dir.file("b.ply"))) << backend;
-    ASSERT_EQ(mcquad("fit " + inputs + " -o " + dir.file("c.ply") + " --iterations 5 --seed 12 --backend " + backend).code, 0);
+    ASSERT_EQ(
+        mcquad("fit " + inputs + " -o " + dir.file("c.ply") + " --iterations 5 --seed 12 --backend " + backend).code,
+        0);
     EXPECT_NE(file_bytes(dir.file("a.ply")), file_bytes(dir.file("c.ply"))) << backend;
   }
 }
@@ -100,7 +104,8 @@ TEST(Cli, VerdictWarnsAndStrictFailsAfterWritingTheOutputs) {
   EXPECT_NE(good.output.find("verdict: pass (10 of 10 checks passed)"), std::string::npos) << good.output;
   EXPECT_EQ(good.output.find("check failed"), std::string::npos) << good.output;
   // No iterations: the initial mesh inside the tube, far from the cloud.
-  std::string unfitted = "fit " + inputs + " --iterations 0 -o " + dir.file("far.obj") + " --report " + dir.file("far.json");
+  std::string unfitted =
+      "fit " + inputs + " --iterations 0 -o " + dir.file("far.obj") + " --report " + dir.file("far.json");
   CliRun lenient = mcquad(unfitted);
   EXPECT_EQ(lenient.code, kExitOk) << lenient.output;
   size_t uncovered = lenient.output.find("mcquad: warning: check failed: uncovered_cloud = ");
@@ -144,7 +149,8 @@ TEST(Cli, BadInputsGiveOneLineAndDocumentedCodes) {
   EXPECT_NE(format.output.find("(expected .obj, .off, .ply, .om, .stl, .stla)"), std::string::npos) << format.output;
   EXPECT_EQ(mcquad("generate nothing -o " + dir.file("")).code, kExitInput);
   EXPECT_FALSE(std::filesystem::exists(dir.file("o.obj")));
-  CliRun device = mcquad("fit " + points + " " + skeleton + " -o " + dir.file("o.obj") + " --backend opencl --device 99");
+  CliRun device =
+      mcquad("fit " + points + " " + skeleton + " -o " + dir.file("o.obj") + " --backend opencl --device 99");
   EXPECT_EQ(device.code, kExitDevice) << device.output;
   EXPECT_FALSE(std::filesystem::exists(dir.file("o.obj")));
   // An explicit device is not replaced by the serial backend, even with --backend auto.
@@ -158,8 +164,9 @@ TEST(Cli, SurfacesFromFitAndFromAMesh) {
   test::TempDir dir;
   ASSERT_EQ(mcquad("generate t-shape -o " + dir.file("") + " --points 15000").code, 0);
   std::string points = dir.file("t-shape.ply"), skeleton = dir.file("t-shape.skeleton.obj");
-  CliRun fit = mcquad("fit " + points + " " + skeleton + " -o " + dir.file("t.obj") + " --backend serial --iterations 5" +
-                      " --surfaces " + dir.file("t.step") + " --control-nets " + dir.file("nets.obj") + " --report " + dir.file("r.json"));
+  CliRun fit = mcquad("fit " + points + " " + skeleton + " -o " + dir.file("t.obj") +
+                      " --backend serial --iterations 5" + " --surfaces " + dir.file("t.step") + " --control-nets " +
+                      dir.file("nets.obj") + " --report " + dir.file("r.json"));
   ASSERT_EQ(fit.code, 0) << fit.output;
   EXPECT_NE(fit.output.find("B-spline faces read back"), std::string::npos) << fit.output;
   std::ifstream report(dir.file("r.json"));
@@ -173,10 +180,12 @@ TEST(Cli, SurfacesFromFitAndFromAMesh) {
     if (check["name"] == "surfaces_off_cloud") {
       judged = true;
       EXPECT_EQ(check["value"].get<double>(), surfaces["checks"]["faces_off_cloud"].get<double>());
-      EXPECT_EQ(check["sites"].size(), std::min<size_t>(20 /* kMaxOffCloudSites */, surfaces["checks"]["off_cloud_sites"].size()));
+      EXPECT_EQ(check["sites"].size(),
+                std::min<size_t>(20 /* kMaxOffCloudSites */, surfaces["checks"]["off_cloud_sites"].size()));
     }
   EXPECT_TRUE(judged) << json["verdict"].dump();
-  CliRun iges = mcquad("surfaces " + dir.file("t.obj") + " -o " + dir.file("t.igs") + " --cloud " + points + " --json " + dir.file("s.json"));
+  CliRun iges = mcquad("surfaces " + dir.file("t.obj") + " -o " + dir.file("t.igs") + " --cloud " + points +
+                       " --json " + dir.file("s.json"));
   ASSERT_EQ(iges.code, 0) << iges.output;
   EXPECT_NE(iges.output.find("distance to the cloud"), std::string::npos) << iges.output;
   EXPECT_TRUE(std::filesystem::exists(dir.file("s.json")));
@@ -184,7 +193,9 @@ TEST(Cli, SurfacesFromFitAndFromAMesh) {
   EXPECT_EQ(mcquad("surfaces " + dir.file("none.obj") + " -o " + dir.file("x.step")).code, kExitInput);
   EXPECT_EQ(mcquad("surfaces " + dir.file("t.obj") + " -o " + dir.file("x.stl")).code, kExitOutput);
   EXPECT_EQ(mcquad("surfaces " + dir.file("t.obj") + " -o " + dir.file("nodir/x.step")).code, kExitOutput);
-  EXPECT_EQ(mcquad("fit " + points + " " + skeleton + " -o " + dir.file("u.obj") + " --surfaces " + dir.file("u.dxf")).code, kExitOutput);
+  EXPECT_EQ(
+      mcquad("fit " + points + " " + skeleton + " -o " + dir.file("u.obj") + " --surfaces " + dir.file("u.dxf")).code,
+      kExitOutput);
   EXPECT_FALSE(std::filesystem::exists(dir.file("u.obj")));
   std::string triangles = dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   CliRun unsupported = mcquad("surfaces " + triangles + " -o " + dir.file("x.step"));
@@ -211,15 +222,17 @@ TEST(Cli, SkeletonFromTheCloudAloneAndInAFitWithoutSkeleton) {
   std::string points = dir.file("t-shape.ply");
   CliRun extracted = mcquad("skeleton " + points + " -o " + dir.file("s.obj") + " --report " + dir.file("s.json"));
   ASSERT_EQ(extracted.code, 0) << extracted.output;
-  EXPECT_NE(extracted.output.find("1 junctions, 3 ends, 0 independent cycles, 1 components"), std::string::npos) << extracted.output;
+  EXPECT_NE(extracted.output.find("1 junctions, 3 ends, 0 independent cycles, 1 components"), std::string::npos)
+      << extracted.output;
   nlohmann::json report = nlohmann::json::parse(file_text(dir.file("s.json")));
   ASSERT_FALSE(report["nodes"].empty());
   for (const auto& node : report["nodes"]) EXPECT_NEAR(node["radius"].get<double>(), 1.0, 0.25);
   // Byte for byte the same on a second run, and the skeleton a fit with none builds on.
   ASSERT_EQ(mcquad("skeleton " + points + " -o " + dir.file("again.obj")).code, 0);
   EXPECT_EQ(file_text(dir.file("s.obj")), file_text(dir.file("again.obj")));
-  CliRun fit = mcquad("fit " + points + " -o " + dir.file("fit.obj") + " --backend serial --iterations 3 --write-skeleton " +
-                      dir.file("used.obj") + " --report " + dir.file("fit.json"));
+  CliRun fit =
+      mcquad("fit " + points + " -o " + dir.file("fit.obj") + " --backend serial --iterations 3 --write-skeleton " +
+             dir.file("used.obj") + " --report " + dir.file("fit.json"));
   ASSERT_EQ(fit.code, 0) << fit.output;
   nlohmann::json fit_report = nlohmann::json::parse(file_text(dir.file("fit.json")));
   EXPECT_EQ(fit_report["skeleton_extraction"]["junctions"].get<int>(), 1);
@@ -236,7 +249,8 @@ TEST(Cli, SkeletonOfABadCloudIsAOneLineError) {
   EXPECT_NE(too_few.output.find(few + ": 3 points are too few"), std::string::npos) << too_few.output;
   std::string sheet;
   for (int i = 0; i < 150; ++i)
-    for (int j = 0; j < 150; ++j) sheet += std::to_string(i * 0.05 + 0.001 * (j % 7)) + " " + std::to_string(j * 0.05) + " 0\n";
+    for (int j = 0; j < 150; ++j)
+      sheet += std::to_string(i * 0.05 + 0.001 * (j % 7)) + " " + std::to_string(j * 0.05) + " 0\n";
   std::string sheet_path = dir.write("sheet.xyz", sheet);
   CliRun flat = mcquad("skeleton " + sheet_path + " -o " + dir.file("s.obj"));
   EXPECT_EQ(flat.code, kExitUnsupported) << flat.output;

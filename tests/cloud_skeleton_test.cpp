@@ -87,8 +87,8 @@ struct Case {
 
 std::vector<Case> cases() {
   std::vector<Case> all;
-  for (const char* name : {"t-shape", "torus-knot", "tube-frame", "tube", "bent-tube", "torus", "y-fork", "octopus", "fan",
-                           "double-junction", "theta", "parallel-tubes", "thin-branch", "tight-knot"})
+  for (const char* name : {"t-shape", "torus-knot", "tube-frame", "tube", "bent-tube", "torus", "y-fork", "octopus",
+                           "fan", "double-junction", "theta", "parallel-tubes", "thin-branch", "tight-knot"})
     all.push_back({name, ShapeOptions{}, name});
   for (int arms = 3; arms <= 9; ++arms) {
     ShapeOptions o;
@@ -119,9 +119,9 @@ std::vector<Case> cases() {
 // is wrong with each); kept, disabled, so that they are run and looked at:
 // mcquad_tests --gtest_also_run_disabled_tests --gtest_filter='*KnownHard*'
 bool known_hard(const std::string& label) {
-  for (const char* hard : {"tube-frame", "tube-frame+noise", "tube-frame+outliers", "tube-frame+holes", "octopus", "fan",
-                           "theta", "tight-knot", "planar-star-5", "planar-star-6", "planar-star-7", "planar-star-8",
-                           "planar-star-9", "y-fork-15", "y-fork-30", "star+holes"})
+  for (const char* hard : {"tube-frame", "tube-frame+noise", "tube-frame+outliers", "tube-frame+holes", "octopus",
+                           "fan", "theta", "tight-knot", "planar-star-5", "planar-star-6", "planar-star-7",
+                           "planar-star-8", "planar-star-9", "y-fork-15", "y-fork-30", "star+holes"})
     if (label == hard) return true;
   return false;
 }
@@ -144,10 +144,11 @@ void expect_true_skeleton(const Case& c) {
   GeneratedShape shape = generate_shape(c.shape, c.options);
   ExtractedSkeleton extracted = extract_skeleton(shape.cloud, c.label);
   Score s = score(shape, extracted.skeleton);
-  std::printf("%-22s truth J%d E%d C%d K%d found J%d E%d C%d K%d offset mean %.3f worst %.3f covered %.3f (%zu nodes)\n",
-              c.label.c_str(), s.truth.junctions, s.truth.ends, s.truth.cycles, s.truth.components, s.found.junctions,
-              s.found.ends, s.found.cycles, s.found.components, s.mean_offset, s.worst_offset, s.covered,
-              extracted.skeleton.nodes.size());
+  std::printf(
+      "%-22s truth J%d E%d C%d K%d found J%d E%d C%d K%d offset mean %.3f worst %.3f covered %.3f (%zu nodes)\n",
+      c.label.c_str(), s.truth.junctions, s.truth.ends, s.truth.cycles, s.truth.components, s.found.junctions,
+      s.found.ends, s.found.cycles, s.found.components, s.mean_offset, s.worst_offset, s.covered,
+      extracted.skeleton.nodes.size());
   if (const char* dump = std::getenv("MCQUAD_SKELETON_DUMP")) {
     write_skeleton_obj(std::string(dump) + "/" + c.label + ".found.obj", extracted.skeleton);
     write_skeleton_obj(std::string(dump) + "/" + c.label + ".truth.obj", shape.skeleton);
@@ -234,7 +235,8 @@ TEST(CloudSkeleton, RefusesABlobWithNoLimbs) {
   PointCloud cloud;
   std::mt19937_64 random(4);
   std::normal_distribution<float> n(0.0f, 1.0f);
-  for (int k = 0; k < 40000; ++k) cloud.points.push_back(Eigen::Vector3f(n(random), n(random), n(random)).normalized() * 3.0f);
+  for (int k = 0; k < 40000; ++k)
+    cloud.points.push_back(Eigen::Vector3f(n(random), n(random), n(random)).normalized() * 3.0f);
   try {
     extract_skeleton(cloud, "ball.ply");
     FAIL() << "no error";

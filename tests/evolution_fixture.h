@@ -44,7 +44,8 @@ struct Fixture {
   std::vector<double> true_surface_distances(const std::vector<float>& positions) const {
     std::vector<double> out;
     for (size_t v = 0; v < positions.size() / 3; ++v)
-      out.push_back(std::abs(shape.surface.signed_distance(Eigen::Vector3d(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]))));
+      out.push_back(std::abs(shape.surface.signed_distance(
+          Eigen::Vector3d(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]))));
     return out;
   }
 
@@ -106,11 +107,11 @@ inline size_t count_differing(const std::vector<float>& a, const std::vector<flo
   return differing;
 }
 
-#define REQUIRE_OPENCL(backend)                                  \
-  auto backend = ::mcquad::test::opencl_or_skip();                             \
-  if (!backend) {                                                \
+#define REQUIRE_OPENCL(backend)                                                 \
+  auto backend = ::mcquad::test::opencl_or_skip();                              \
+  if (!backend) {                                                               \
     if (!::mcquad::test::opencl_required()) GTEST_SKIP() << "no OpenCL device"; \
-    return;                                                      \
+    return;                                                                     \
   }
 #endif
 

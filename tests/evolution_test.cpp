@@ -26,14 +26,16 @@ using test::Fixture;
 using test::count_differing;
 #endif
 
-
 //! Issue 4's quality bar, at the paper's parameters and the default cells:
 //! mean distance to the true surface at most 1 % of the tube radius, 95th
 //! percentile at most 3 %, and 95 % of the cloud within 5 % of the mesh.
 TEST(SerialEvolution, VerticesEndOnTheTrueSurfaceAndCoverTheCloud) {
   // The paper's T, the Fig. 6 stand-in at its full 182,274 points, and plain tubes.
-  for (auto [name, points] : {std::pair<const char*, size_t>{"t-shape", 60000}, {"tube-frame", 182274},
-                              {"tube", 40000}, {"torus", 40000}, {"bent-tube", 40000}}) {
+  for (auto [name, points] : {std::pair<const char*, size_t>{"t-shape", 60000},
+                              {"tube-frame", 182274},
+                              {"tube", 40000},
+                              {"torus", 40000},
+                              {"bent-tube", 40000}}) {
     Fixture f(name, points);
     SerialBackend backend;
     backend.load(f.cells, f.arrays, f.regions);
@@ -168,7 +170,8 @@ TEST(OpenCLParity, RelaxationAndPaperModeMatchTheSerialPath) {
       p.mode = mode;
       p.relaxation = relaxation;
       SerialBackend serial;
-      EXPECT_LE(one_step_differences(f, serial, *opencl, p), f.arrays.vertex_count() / 50) << "relaxation " << relaxation;
+      EXPECT_LE(one_step_differences(f, serial, *opencl, p), f.arrays.vertex_count() / 50)
+          << "relaxation " << relaxation;
     }
   }
 }
@@ -180,7 +183,8 @@ TEST(OpenCLParity, TwentyIterationsReachTheSameQuality) {
   serial.load(f.cells, f.arrays, f.regions);
   opencl->load(f.cells, f.arrays, f.regions);
   EvolutionResult a = evolve(serial, f.arrays, f.parameters), b = evolve(*opencl, f.arrays, f.parameters);
-  EXPECT_NEAR(a.iterations.back().error_level, b.iterations.back().error_level, 0.1 * a.iterations.back().error_level + 1e-4);
+  EXPECT_NEAR(a.iterations.back().error_level, b.iterations.back().error_level,
+              0.1 * a.iterations.back().error_level + 1e-4);
   DistanceSummary da = summarize_distances(f.true_surface_distances(a.positions));
   DistanceSummary db = summarize_distances(f.true_surface_distances(b.positions));
   EXPECT_NEAR(da.mean, db.mean, 0.005 * f.radius);
@@ -195,7 +199,8 @@ TEST(OpenCLParity, HoleFillingMatchesTheSerialPath) {
   SerialBackend serial;
   serial.load(f.cells, f.arrays, f.regions);
   opencl->load(f.cells, f.arrays, f.regions);
-  std::vector<float> a = evolve(serial, f.arrays, f.parameters).positions, b = evolve(*opencl, f.arrays, f.parameters).positions;
+  std::vector<float> a = evolve(serial, f.arrays, f.parameters).positions,
+                     b = evolve(*opencl, f.arrays, f.parameters).positions;
   EXPECT_LE(count_differing(a, b, 1e-3f * float(f.radius)), a.size() / 3 / 50);
 }
 
@@ -279,12 +284,11 @@ TEST(OpenCLKernels, PhiloxRaysAndTraversalMatchTheHost) {
   size_t hit = 0;
   for (size_t i = 0; i < device_hits.size(); ++i) {
     float entry;
-    int host = device::mcq_first_cell_hit(f.cells.node_bounds.data(), f.cells.node_children.data(),
-                                          device::mcq_cell_filter{f.regions.cell_bones.data(), seen_by_bone0.data(),
-                                                                  uint32_t(seen_by_bone0.size())},
-                                          device::mcq_load3(f.arrays.positions.data(), uint32_t(i / rays)),
-                                          device::mcq_load3(device_dirs.data(), uint32_t(i)),
-                                          float(f.parameters.epsilon), &entry);
+    int host = device::mcq_first_cell_hit(
+        f.cells.node_bounds.data(), f.cells.node_children.data(),
+        device::mcq_cell_filter{f.regions.cell_bones.data(), seen_by_bone0.data(), uint32_t(seen_by_bone0.size())},
+        device::mcq_load3(f.arrays.positions.data(), uint32_t(i / rays)),
+        device::mcq_load3(device_dirs.data(), uint32_t(i)), float(f.parameters.epsilon), &entry);
     ASSERT_EQ(host, device_hits[i]) << "vertex " << i / rays << " ray " << i % rays;
     hit += host >= 0;
   }

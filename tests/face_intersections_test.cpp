@@ -74,7 +74,9 @@ TEST(FaceIntersections, MetricsSayWhereFacesCross) {
   ASSERT_EQ(m.intersecting_face_pairs, pairs.size());
   ASSERT_EQ(m.crossing_sites.size(), std::min(pairs.size(), QualityMetrics::kMaxCrossingSites));
   for (size_t k = 0; k < m.crossing_sites.size(); ++k)
-    EXPECT_LT((m.crossing_sites[k] - 0.5 * (face_centroid(mesh, pairs[k].first) + face_centroid(mesh, pairs[k].second))).norm(), 1e-12);
+    EXPECT_LT((m.crossing_sites[k] - 0.5 * (face_centroid(mesh, pairs[k].first) + face_centroid(mesh, pairs[k].second)))
+                  .norm(),
+              1e-12);
   EXPECT_EQ(to_json(m)["crossing_sites"].size(), m.crossing_sites.size());
 }
 

@@ -22,8 +22,8 @@ struct Reader {
 
 // As in fuzz/CMakeLists.txt.
 const std::map<std::string, Reader> kTargets = {
-    {"ply_cloud", {"ply", false}},   {"xyz_cloud", {"xyz", false}},       {"csv_cloud", {"csv", false}},
-    {"obj_cloud", {"obj", false}},   {"off_cloud", {"off", false}},       {"obj_skeleton", {"obj", true}},
+    {"ply_cloud", {"ply", false}},     {"xyz_cloud", {"xyz", false}}, {"csv_cloud", {"csv", false}},
+    {"obj_cloud", {"obj", false}},     {"off_cloud", {"off", false}}, {"obj_skeleton", {"obj", true}},
     {"cgal_skeleton", {"cgal", true}},
 };
 
@@ -37,8 +37,10 @@ TEST(FuzzRegressions, EveryKeptInputIsReadOrRefusedWithInputError) {
       for (const auto& entry : std::filesystem::directory_iterator(folder)) {
         std::string copy = dir.write(std::string("input.") + reader.extension, read_file(entry.path().string()));
         try {
-          if (reader.skeleton) read_skeleton(copy);
-          else read_point_cloud(copy, true);
+          if (reader.skeleton)
+            read_skeleton(copy);
+          else
+            read_point_cloud(copy, true);
         } catch (const InputError&) {
         } catch (const std::exception& e) {
           ADD_FAILURE() << entry.path() << ": " << e.what();

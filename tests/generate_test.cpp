@@ -70,7 +70,8 @@ TEST(Generate, ScanDefectsOutliersDensityAndHoles) {
   options.outliers = 0.01;
   GeneratedShape noisy = test::small_shape("t-shape", 20000, options);
   size_t off_surface = 0;
-  for (const auto& p : noisy.cloud.points) off_surface += std::abs(noisy.surface.signed_distance(p.cast<double>())) >= 0.99;
+  for (const auto& p : noisy.cloud.points)
+    off_surface += std::abs(noisy.surface.signed_distance(p.cast<double>())) >= 0.99;
   EXPECT_EQ(off_surface, 200u);
 
   // Density: the T's arms run along x, from -5 to 5.

@@ -38,16 +38,11 @@ ShapeOptions with(double angle = 60, double noise = 0, double outliers = 0, doub
 }
 
 const HardCase kCases[] = {
-    {"y_fork_30", "y-fork", with(30), true},
-    {"y_fork_15", "y-fork", with(15), false},
-    {"tight_knot", "tight-knot", with(), true},
-    {"parallel_tubes", "parallel-tubes", with(), true},
-    {"thin_branch", "thin-branch", with(), true},
-    {"noise_2", "t-shape", with(60, 0.02), true},
-    {"noise_5", "t-shape", with(60, 0.05), true},
-    {"noise_10", "t-shape", with(60, 0.10), true},
-    {"outliers", "t-shape", with(60, 0, 0.01), true},
-    {"density_10", "t-shape", with(60, 0, 0, 10), true},
+    {"y_fork_30", "y-fork", with(30), true},          {"y_fork_15", "y-fork", with(15), false},
+    {"tight_knot", "tight-knot", with(), true},       {"parallel_tubes", "parallel-tubes", with(), true},
+    {"thin_branch", "thin-branch", with(), true},     {"noise_2", "t-shape", with(60, 0.02), true},
+    {"noise_5", "t-shape", with(60, 0.05), true},     {"noise_10", "t-shape", with(60, 0.10), true},
+    {"outliers", "t-shape", with(60, 0, 0.01), true}, {"density_10", "t-shape", with(60, 0, 0, 10), true},
     {"holes", "t-shape", with(60, 0, 0, 1, 3), true},
 };
 
@@ -120,10 +115,10 @@ TEST_P(HardCases, RobustModeKeepsTheMeshValidAndCoversTheCloud) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Issue6, HardCases, ::testing::Combine(::testing::ValuesIn(kCases), ::testing::ValuesIn(kBackends)),
+INSTANTIATE_TEST_SUITE_P(Issue6, HardCases,
+                         ::testing::Combine(::testing::ValuesIn(kCases), ::testing::ValuesIn(kBackends)),
                          [](const auto& test_info) {
-                           return std::string(std::get<0>(test_info.param).label) + "_" +
-                                  std::get<1>(test_info.param);
+                           return std::string(std::get<0>(test_info.param).label) + "_" + std::get<1>(test_info.param);
                          });
 
 //! The 15-degree Y's branches never part and are built as one tube, twice as

@@ -73,8 +73,10 @@ void at_both_levels(const ShapeCase& c, const ShapeUnderTest& t, Check check) {
     options.target_vertices = level == 0 ? 1 : 4000;
     InitialMesh initial = build_initial_mesh(t.graph, t.bones, t.shape.cloud, options, c.name);
     MeshStatistics s = expect_initial_topology(initial, t.graph, t.shape);
-    if (level == 0) irregular_at_first_level = s.irregular_vertices;
-    else EXPECT_EQ(s.irregular_vertices, irregular_at_first_level);
+    if (level == 0)
+      irregular_at_first_level = s.irregular_vertices;
+    else
+      EXPECT_EQ(s.irregular_vertices, irregular_at_first_level);
     check(initial, s);
   }
 }
@@ -165,17 +167,16 @@ TEST_P(JunctionTopology, HoldsAtAnyValence) {
     EXPECT_NEAR(winding_number(closed.mesh, closed.skeleton.graph.positions[node]), 1.0, 1e-6) << "node " << node;
 }
 
-INSTANTIATE_TEST_SUITE_P(Issue20, JunctionTopology,
-                         // Not yet here: the planar 8 and the skew 7, whose capped meshes
-                         // cross themselves enough to wind twice round a node.
-                         testing::Values(ShapeCase{"planar-star", with_arms(7), 30000},
-                                         ShapeCase{"star", with_arms(8), 30000},
-                                         ShapeCase{"star", with_arms(9), 30000}, ShapeCase{"star", with_arms(10), 40000},
-                                         ShapeCase{"star", with_arms(12), 40000}, ShapeCase{"octopus", {}, 40000},
-                                         ShapeCase{"fan", with_angle(20), 30000}, ShapeCase{"fan", with_angle(30), 30000},
-                                         ShapeCase{"fan", with_angle(40), 30000},
-                                         ShapeCase{"double-junction", {}, 30000}),
-                         case_name);
+INSTANTIATE_TEST_SUITE_P(
+    Issue20, JunctionTopology,
+    // Not yet here: the planar 8 and the skew 7, whose capped meshes
+    // cross themselves enough to wind twice round a node.
+    testing::Values(ShapeCase{"planar-star", with_arms(7), 30000}, ShapeCase{"star", with_arms(8), 30000},
+                    ShapeCase{"star", with_arms(9), 30000}, ShapeCase{"star", with_arms(10), 40000},
+                    ShapeCase{"star", with_arms(12), 40000}, ShapeCase{"octopus", {}, 40000},
+                    ShapeCase{"fan", with_angle(20), 30000}, ShapeCase{"fan", with_angle(30), 30000},
+                    ShapeCase{"fan", with_angle(40), 30000}, ShapeCase{"double-junction", {}, 30000}),
+    case_name);
 
 //! Two separate objects in one cloud and one skeleton: a torus and, beside
 //! it, a T. One mesh component each, with each its own Euler characteristic.
@@ -214,7 +215,8 @@ TEST(InitialMesh, TooManyArmsFailClearlyNamingTheNode) {
   SkeletonGraph graph = build_skeleton_graph(skeleton, "many.obj");
   PointCloud cloud;
   for (int k = 1; k <= arms; ++k)
-    for (int s = 0; s < 50; ++s) cloud.points.push_back((graph.positions[k] * (s / 50.0) + Eigen::Vector3d(0, 0, 0.5)).cast<float>());
+    for (int s = 0; s < 50; ++s)
+      cloud.points.push_back((graph.positions[k] * (s / 50.0) + Eigen::Vector3d(0, 0, 0.5)).cast<float>());
   BoneAssignment bones = assign_points_to_bones(graph, cloud, "many.obj");
   for (double min_angle : {0.0, 75.0 * M_PI / 180}) {
     InitialMeshOptions options;

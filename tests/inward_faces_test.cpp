@@ -12,7 +12,8 @@ namespace {
 QuadMesh cube(bool outward) {
   QuadMesh mesh;
   std::vector<QuadMesh::VertexHandle> v;
-  for (int i = 0; i < 8; ++i) v.push_back(mesh.add_vertex(QuadMesh::Point(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1)));
+  for (int i = 0; i < 8; ++i)
+    v.push_back(mesh.add_vertex(QuadMesh::Point(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1)));
   const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
   for (const auto& f : faces) {
     std::vector<QuadMesh::VertexHandle> corners{v[size_t(f[0])], v[size_t(f[1])], v[size_t(f[2])], v[size_t(f[3])]};

@@ -27,7 +27,8 @@ std::string binary_ply(bool big_endian, bool doubles, int count, int claimed) {
       double value = i + 0.25 * k;
       char raw[8];
       int size = doubles ? 8 : 4;
-      if (doubles) std::memcpy(raw, &value, 8);
+      if (doubles)
+        std::memcpy(raw, &value, 8);
       else {
         float f = float(value);
         std::memcpy(raw, &f, 4);
@@ -56,7 +57,8 @@ TEST(PointCloudIo, ReadsAsciiPlyWithNormalsAndOtherElements) {
   TempDir dir;
   std::string text =
       "ply\nformat ascii 1.0\ncomment hi\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
-      "property float nx\nproperty float ny\nproperty float nz\nelement face 1\nproperty list uchar int vertex_indices\n"
+      "property float nx\nproperty float ny\nproperty float nz\nelement face 1\nproperty list uchar int "
+      "vertex_indices\n"
       "end_header\n1 2 3 0 0 1\n4 5 6 0 1 0\n3 0 1 1\n";
   EXPECT_TRUE(read_point_cloud(dir.write("a.ply", text)).normals.empty()) << "normals only when asked for";
   PointCloud cloud = read_point_cloud(dir.file("a.ply"), true);
@@ -70,8 +72,9 @@ TEST(PointCloudIo, ReadsAsciiPlyWithNormalsAndOtherElements) {
 // with their unit normals (zero normals left out), from PLY as from OBJ.
 TEST(PointCloudIo, ReadsAStridedSampleOfOrientedPointsInsteadOfEveryNormal) {
   TempDir dir;
-  std::string ply = "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\nproperty float z\n"
-                    "property float nx\nproperty float ny\nproperty float nz\nend_header\n";
+  std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\nproperty float z\n"
+      "property float nx\nproperty float ny\nproperty float nz\nend_header\n";
   for (int i = 0; i < 6; ++i) ply += std::to_string(i) + " 0 0 " + (i == 2 ? "0 0 0" : "0 0 2") + "\n";
   PointCloud cloud = read_point_cloud(dir.write("s.ply", ply), false, 3);  // every 2nd point
   EXPECT_EQ(cloud.size(), 6u);
@@ -124,16 +127,24 @@ TEST(PointCloudIo, RejectsBadInputWithClearMessages) {
   std::string huge = binary_ply(false, false, 3, 3);
   huge.replace(huge.find("vertex 3"), 8, "vertex 1000000000000");
   expect_input_error(dir.write("huge.ply", huge), "claims");
-  expect_input_error(dir.write("trunc.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"), "truncated");
-  expect_input_error(dir.write("short.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n1 2 3\n"), "truncated");
+  expect_input_error(dir.write("trunc.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"),
+                     "truncated");
+  expect_input_error(dir.write("short.ply",
+                               "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty "
+                               "float z\nend_header\n1 2 3\n"),
+                     "truncated");
   expect_input_error(dir.write("nan.xyz", "1 2 3\nnan 0 0\n"), "line 2");
-  expect_input_error(dir.write("inf.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n1 inf 3\n"), "NaN or infinite");
+  expect_input_error(dir.write("inf.ply",
+                               "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty "
+                               "float z\nend_header\n1 inf 3\n"),
+                     "NaN or infinite");
   expect_input_error(dir.write("empty.xyz", "# nothing\n"), "empty");
   expect_input_error(dir.write("words.xyz", "1 2 3\n1 two 3\n"), "not a number");
   expect_input_error(dir.write("cloud.stl", "solid"), "unknown point cloud extension");
   expect_input_error(dir.file("missing.ply"), "cannot open");
   expect_input_error(dir.write("off.off", "OFF\n5 0 0\n1 2 3\n"), "truncated");
-  expect_input_error(dir.write("noxyz.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float a\nend_header\n1\n"), "lacks x");
+  expect_input_error(
+      dir.write("noxyz.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float a\nend_header\n1\n"), "lacks x");
 }
 
 TEST(SkeletonIo, ReadsObjPolylinesAndCgalFormat) {

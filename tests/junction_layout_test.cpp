@@ -59,12 +59,14 @@ Junction random_junction(int n, unsigned seed) {
 }
 
 std::vector<Junction> junctions() {
-  std::vector<Junction> all{planar("T", {0, 180, 270}), planar("Y120", {90, 210, 330}),
+  std::vector<Junction> all{planar("T", {0, 180, 270}),
+                            planar("Y120", {90, 210, 330}),
                             planar("planar5_uneven", {0, 60, 150, 200, 290}),
                             planar("planar7_uneven", {0, 40, 95, 150, 200, 250, 310}),
                             planar("planar8_uneven", {0, 30, 85, 140, 180, 230, 270, 320}),
                             planar("planar12", {0, 30, 60, 90, 120, 150, 180, 210, 240, 270, 300, 330})};
-  Junction octahedral{"octahedral", {Vec::UnitX(), -Vec::UnitX(), Vec::UnitY(), -Vec::UnitY(), Vec::UnitZ(), -Vec::UnitZ()},
+  Junction octahedral{"octahedral",
+                      {Vec::UnitX(), -Vec::UnitX(), Vec::UnitY(), -Vec::UnitY(), Vec::UnitZ(), -Vec::UnitZ()},
                       std::vector<double>(6, 1.0)};
   all.push_back(octahedral);
   Junction octopus{"octopus", {Vec::UnitZ()}, {1.6}};
@@ -102,7 +104,7 @@ TEST_P(JunctionLayoutCases, IsAClosedOutwardQuadPolyhedronFacingEveryBone) {
   for (const Vec& p : soup.vertices) handles.push_back(mesh.add_vertex(QuadMesh::Point(p.x(), p.y(), p.z())));
   for (const auto& q : soup.quads) {
     auto face = mesh.add_face(std::vector<QuadMesh::VertexHandle>{handles[size_t(q[0])], handles[size_t(q[1])],
-                                                                   handles[size_t(q[2])], handles[size_t(q[3])]});
+                                                                  handles[size_t(q[2])], handles[size_t(q[3])]});
     ASSERT_TRUE(face.is_valid()) << "non-manifold quad";
   }
   MeshStatistics s = mesh_statistics(mesh);

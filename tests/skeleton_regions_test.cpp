@@ -23,7 +23,8 @@ struct Prepared {
   bool sees(uint32_t vertex, uint32_t cell) const {
     const SkeletonRegions& r = regions();
     uint32_t bone = r.vertex_bones[vertex];
-    auto first = r.visible_bones.begin() + r.visible_offsets[bone], last = r.visible_bones.begin() + r.visible_offsets[bone + 1];
+    auto first = r.visible_bones.begin() + r.visible_offsets[bone],
+         last = r.visible_bones.begin() + r.visible_offsets[bone + 1];
     return std::binary_search(first, last, r.cell_bones[cell]);
   }
   Eigen::Vector3d vertex(uint32_t v) const {

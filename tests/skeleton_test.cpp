@@ -15,9 +15,9 @@ SkeletonData skeleton_of(std::vector<Eigen::Vector3d> nodes, std::vector<std::ar
 
 TEST(SkeletonGraph, ClassifiesNodesAndFindsBranchesAndLoops) {
   // A T (junction, three ends) plus a separate square loop.
-  SkeletonData data = skeleton_of({{0, 0, 0}, {-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, -2, 0},
-                                   {5, 0, 0}, {6, 0, 0}, {6, 1, 0}, {5, 1, 0}},
-                                  {{0, 1}, {0, 2}, {0, 3}, {3, 4}, {5, 6}, {6, 7}, {7, 8}, {8, 5}});
+  SkeletonData data = skeleton_of(
+      {{0, 0, 0}, {-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, -2, 0}, {5, 0, 0}, {6, 0, 0}, {6, 1, 0}, {5, 1, 0}},
+      {{0, 1}, {0, 2}, {0, 3}, {3, 4}, {5, 6}, {6, 7}, {7, 8}, {8, 5}});
   SkeletonGraph graph = build_skeleton_graph(data, "t.obj");
   EXPECT_EQ(graph.kind(0), NodeKind::kJunction);
   EXPECT_EQ(graph.kind(1), NodeKind::kEnd);
@@ -106,8 +106,14 @@ TEST(AcuteJunctions, SpreadWhereTheTubesPartMergeWhereTheyNeverDo) {
 TEST(AcuteJunctions, BranchesThatPartBetweenTheirEndsAreNotMerged) {
   // 10 degrees apart at the junction, too short for it to move to a crotch,
   // ends 0.4 apart (radius 0.4), but 2.4 apart halfway.
-  SkeletonData data = skeleton_of({{0, 0, 0}, {0, -4, 0}, {0.1, 1.1, 0}, {1.2, 2.6, 0}, {0.2, 4.2, 0},
-                                   {-0.1, 1.1, 0}, {-1.2, 2.6, 0}, {-0.2, 4.2, 0}},
+  SkeletonData data = skeleton_of({{0, 0, 0},
+                                   {0, -4, 0},
+                                   {0.1, 1.1, 0},
+                                   {1.2, 2.6, 0},
+                                   {0.2, 4.2, 0},
+                                   {-0.1, 1.1, 0},
+                                   {-1.2, 2.6, 0},
+                                   {-0.2, 4.2, 0}},
                                   {{0, 1}, {0, 2}, {2, 3}, {3, 4}, {0, 5}, {5, 6}, {6, 7}});
   SkeletonGraph graph = build_skeleton_graph(data, "pinch.obj");
   BoneAssignment bones;
@@ -121,7 +127,8 @@ TEST(AcuteJunctions, BranchesThatPartBetweenTheirEndsAreNotMerged) {
 
 TEST(BoneAssignment, RejectsSkeletonsThatDoNotMatchTheCloud) {
   GeneratedShape shape = test::small_shape("tube", 5000);
-  SkeletonGraph far = build_skeleton_graph(skeleton_of({{0, 0, -4}, {0, 0, 4}, {30, 0, 4}}, {{0, 1}, {1, 2}}), "far.obj");
+  SkeletonGraph far =
+      build_skeleton_graph(skeleton_of({{0, 0, -4}, {0, 0, 4}, {30, 0, 4}}, {{0, 1}, {1, 2}}), "far.obj");
   EXPECT_THROW(assign_points_to_bones(far, shape.cloud, "far.obj"), InputError);
   SkeletonGraph other = build_skeleton_graph(skeleton_of({{100, 0, 0}, {101, 0, 0}}, {{0, 1}}), "other.obj");
   EXPECT_THROW(assign_points_to_bones(other, shape.cloud, "other.obj"), InputError);
@@ -132,7 +139,8 @@ PointCloud sphere_cloud(double radius, int count) {
   PointCloud cloud;
   for (int i = 0; i < count; ++i) {
     double z = 1 - 2 * (i + 0.5) / count, ring = std::sqrt(1 - z * z), angle = i * M_PI * (3 - std::sqrt(5.0));
-    cloud.points.emplace_back(float(radius * ring * std::cos(angle)), float(radius * ring * std::sin(angle)), float(radius * z));
+    cloud.points.emplace_back(float(radius * ring * std::cos(angle)), float(radius * ring * std::sin(angle)),
+                              float(radius * z));
   }
   return cloud;
 }
@@ -145,11 +153,13 @@ TEST(BoneAssignment, ABoneInsideAThickBodyGetsItsRadiusFromTheCloudAroundIt) {
   PointCloud body = sphere_cloud(3.0, 4000);
   std::vector<Eigen::Vector3d> nodes{{-0.2, 0, 0}, {0.2, 0, 0}};
   std::vector<std::array<int, 2>> bones{{0, 1}};
-  for (const Eigen::Vector3d& out : {Eigen::Vector3d(-2.5, 0, 0), Eigen::Vector3d(0, 2.5, 0), Eigen::Vector3d(0, 0, 2.5)}) {
+  for (const Eigen::Vector3d& out :
+       {Eigen::Vector3d(-2.5, 0, 0), Eigen::Vector3d(0, 2.5, 0), Eigen::Vector3d(0, 0, 2.5)}) {
     nodes.push_back(out);
     bones.push_back({0, int(nodes.size()) - 1});
   }
-  for (const Eigen::Vector3d& out : {Eigen::Vector3d(2.5, 0, 0), Eigen::Vector3d(0, -2.5, 0), Eigen::Vector3d(0, 0, -2.5)}) {
+  for (const Eigen::Vector3d& out :
+       {Eigen::Vector3d(2.5, 0, 0), Eigen::Vector3d(0, -2.5, 0), Eigen::Vector3d(0, 0, -2.5)}) {
     nodes.push_back(out);
     bones.push_back({1, int(nodes.size()) - 1});
   }

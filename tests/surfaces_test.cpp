@@ -149,7 +149,8 @@ TEST_P(SurfacesOnShapes, RegionsAreGridsAndSurfacesMeetAlongTheirSeams) {
   // the rest is reported, site by site, with the mesh's own crease there.
   EXPECT_LT(checks.max_normal_gap_away_from_irregular_degrees, 2.0);
   EXPECT_LE(checks.farthest_gap_from_irregular, 3);
-  for (const NormalGapSite& site : checks.sites) EXPECT_FALSE(is_regular_vertex(mesh, QuadMesh::VertexHandle(site.vertex)));
+  for (const NormalGapSite& site : checks.sites)
+    EXPECT_FALSE(is_regular_vertex(mesh, QuadMesh::VertexHandle(site.vertex)));
   // The smooth surfaces stay within the quad mesh's own distance to the cloud.
   EXPECT_LE(checks.to_cloud.mean, checks.mesh_to_cloud.mean);
   EXPECT_LE(checks.to_cloud.p95, 1.02 * checks.mesh_to_cloud.p95);
@@ -265,7 +266,8 @@ TEST(CadFiles, StepAndIgesReadBackWithEverySurface) {
   EXPECT_EQ(contents.shells, 1u);
   // The theta graph is closed: a closed, valid shell.
   GeneratedShape theta = test::small_shape("theta", 20000);
-  EvolutionSetup theta_setup = prepare_evolution(build_skeleton_graph(theta.skeleton, "theta"), theta.cloud, {}, 6, "theta");
+  EvolutionSetup theta_setup =
+      prepare_evolution(build_skeleton_graph(theta.skeleton, "theta"), theta.cloud, {}, 6, "theta");
   SurfaceModel theta_model = build_surface_model(theta_setup.initial.mesh);
   CadModel(theta_model.surfaces, 1e-6 * theta_setup.median_radius).write(dir.file("theta.step"));
   CadFileContents theta_contents = read_cad_file(dir.file("theta.step"));
@@ -290,7 +292,8 @@ TEST(CadFiles, UnitsAreDeclaredAndTheCoordinatesKept) {
   cad.write(dir.file("m.step"), "m");
   cad.write(dir.file("in.step"), "in");
   cad.write(dir.file("m.igs"), "m");
-  std::string mm = read_file(dir.file("mm.step")), m = read_file(dir.file("m.step")), in = read_file(dir.file("in.step"));
+  std::string mm = read_file(dir.file("mm.step")), m = read_file(dir.file("m.step")),
+              in = read_file(dir.file("in.step"));
   EXPECT_NE(mm.find("SI_UNIT(.MILLI.,.METRE.)"), std::string::npos);
   EXPECT_NE(m.find("SI_UNIT($,.METRE.)"), std::string::npos);
   EXPECT_EQ(m.find("SI_UNIT(.MILLI.,.METRE.)"), std::string::npos);

@@ -60,16 +60,17 @@ TEST_P(VerdictFailsOn, OneBadFigure) {
 
 INSTANTIATE_TEST_SUITE_P(
     EachCheck, VerdictFailsOn,
-    ::testing::Values(BadFigure{"all_quads", [](QualityMetrics& m) { m.statistics.quad_fraction = 0.99; }},
-                      BadFigure{"non_manifold_vertices", [](QualityMetrics& m) { m.statistics.non_manifold_vertices = 1; }},
-                      BadFigure{"intersecting_face_pairs", [](QualityMetrics& m) { m.intersecting_face_pairs = 1; }},
-                      BadFigure{"folded_edges", [](QualityMetrics& m) { m.folded_edges = 2; }},
-                      BadFigure{"min_scaled_jacobian", [](QualityMetrics& m) { m.quad_shape.min_scaled_jacobian = -0.1; }},
-                      BadFigure{"inward_faces", [](QualityMetrics& m) { m.inward_area_fraction = 0.006; }},
-                      BadFigure{"uncovered_cloud", [](QualityMetrics& m) { m.cloud_to_mesh.p95 = 0.06; }},
-                      BadFigure{"mesh_off_cloud", [](QualityMetrics& m) { m.mesh_to_cloud.mean = 0.03; }},
-                      BadFigure{"open_ends", [](QualityMetrics& m) { m.statistics.boundary_loops = 1; }},
-                      BadFigure{"error_level", [](QualityMetrics& m) { m.error_level = 0.006; }}),
+    ::testing::Values(
+        BadFigure{"all_quads", [](QualityMetrics& m) { m.statistics.quad_fraction = 0.99; }},
+        BadFigure{"non_manifold_vertices", [](QualityMetrics& m) { m.statistics.non_manifold_vertices = 1; }},
+        BadFigure{"intersecting_face_pairs", [](QualityMetrics& m) { m.intersecting_face_pairs = 1; }},
+        BadFigure{"folded_edges", [](QualityMetrics& m) { m.folded_edges = 2; }},
+        BadFigure{"min_scaled_jacobian", [](QualityMetrics& m) { m.quad_shape.min_scaled_jacobian = -0.1; }},
+        BadFigure{"inward_faces", [](QualityMetrics& m) { m.inward_area_fraction = 0.006; }},
+        BadFigure{"uncovered_cloud", [](QualityMetrics& m) { m.cloud_to_mesh.p95 = 0.06; }},
+        BadFigure{"mesh_off_cloud", [](QualityMetrics& m) { m.mesh_to_cloud.mean = 0.03; }},
+        BadFigure{"open_ends", [](QualityMetrics& m) { m.statistics.boundary_loops = 1; }},
+        BadFigure{"error_level", [](QualityMetrics& m) { m.error_level = 0.006; }}),
     [](const ::testing::TestParamInfo<BadFigure>& param) { return std::string(param.param.check); });
 
 TEST(Verdict, CrossingSitesAreNamedInTheWarning) {

@@ -17,7 +17,9 @@ struct CloudAdaptor {
   size_t kdtree_get_point_count() const { return cloud.size(); }
   float kdtree_get_pt(size_t i, size_t dim) const { return cloud.points[i][dim]; }
   template <class Box>
-  bool kdtree_get_bbox(Box&) const { return false; }
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
 };
 using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, CloudAdaptor>, CloudAdaptor, 3>;
 using KdNode = KdTree::Node;
@@ -59,7 +61,8 @@ class Flattener {
     if (!node->child1 && !node->child2) {
       int cell = add_cell(node->node_type.lr.left, node->node_type.lr.right);
       out_.node_children[2 * index] = -1 - cell;
-      set_bounds(index, out_.points.data() + 3 * out_.cell_offsets[cell], out_.cell_offsets[cell + 1] - out_.cell_offsets[cell]);
+      set_bounds(index, out_.points.data() + 3 * out_.cell_offsets[cell],
+                 out_.cell_offsets[cell + 1] - out_.cell_offsets[cell]);
       return index;
     }
     int left = flatten(node->child1, level + 1);
@@ -68,7 +71,8 @@ class Flattener {
     out_.node_children[2 * index + 1] = right;
     for (int k = 0; k < 3; ++k) {
       out_.node_bounds[6 * index + k] = std::min(out_.node_bounds[6 * left + k], out_.node_bounds[6 * right + k]);
-      out_.node_bounds[6 * index + 3 + k] = std::max(out_.node_bounds[6 * left + 3 + k], out_.node_bounds[6 * right + 3 + k]);
+      out_.node_bounds[6 * index + 3 + k] =
+          std::max(out_.node_bounds[6 * left + 3 + k], out_.node_bounds[6 * right + 3 + k]);
     }
     return index;
   }
@@ -126,8 +130,8 @@ void count_nodes(const KdNode* node, size_t& nodes, size_t& leaves) {
 }  // namespace
 
 size_t CellTree::byte_size() const {
-  return points.size() * 4 + cell_offsets.size() * 4 + cell_centroids.size() * 4 +
-         cell_normals.size() * 4 + node_bounds.size() * 4 + node_children.size() * 4;
+  return points.size() * 4 + cell_offsets.size() * 4 + cell_centroids.size() * 4 + cell_normals.size() * 4 +
+         node_bounds.size() * 4 + node_children.size() * 4;
 }
 
 CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size, bool pad_boxes) {
@@ -160,7 +164,8 @@ double mean_vertex_error(const CellTree& cells, const std::vector<float>& positi
   const device::mcq_cells view = cells_view(cells);
   const size_t vertices = positions.size() / 3;
   double sum = 0;
-  for (size_t v = 0; v < vertices; ++v) sum += device::mcq_vertex_error(view, device::mcq_load3(positions.data(), uint32_t(v)));
+  for (size_t v = 0; v < vertices; ++v)
+    sum += device::mcq_vertex_error(view, device::mcq_load3(positions.data(), uint32_t(v)));
   return vertices ? sum / double(vertices) : 0.0;
 }
 

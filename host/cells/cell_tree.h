@@ -13,14 +13,14 @@ namespace mcquad {
 //! layout is documented in kernels/shared/mcq_cell_tree.h). Inner nodes keep
 //! tight boxes for ray traversal and nearest-point queries.
 struct CellTree {
-  std::vector<float> points;              //!< 3 per point, reordered by cell
-  std::vector<uint32_t> cell_offsets;     //!< cell c holds points [offsets[c], offsets[c+1])
-  std::vector<float> cell_centroids;      //!< 3 per cell: the paper's g_l
-  std::vector<float> cell_normals;        //!< 3 per cell: the paper's t_l (least-squares plane normal)
-  std::vector<float> node_bounds;         //!< 6 per node: min xyz, max xyz (leaves padded, see build_cell_tree)
-  std::vector<int32_t> node_children;     //!< 2 per node; a leaf stores -1 - cell, -1
-  int depth = 0;                          //!< longest root-to-leaf path, in edges
-  double point_spacing = 0;               //!< the cloud's median nearest-neighbour distance (sampled)
+  std::vector<float> points;           //!< 3 per point, reordered by cell
+  std::vector<uint32_t> cell_offsets;  //!< cell c holds points [offsets[c], offsets[c+1])
+  std::vector<float> cell_centroids;   //!< 3 per cell: the paper's g_l
+  std::vector<float> cell_normals;     //!< 3 per cell: the paper's t_l (least-squares plane normal)
+  std::vector<float> node_bounds;      //!< 6 per node: min xyz, max xyz (leaves padded, see build_cell_tree)
+  std::vector<int32_t> node_children;  //!< 2 per node; a leaf stores -1 - cell, -1
+  int depth = 0;                       //!< longest root-to-leaf path, in edges
+  double point_spacing = 0;            //!< the cloud's median nearest-neighbour distance (sampled)
 
   size_t cell_count() const { return cell_offsets.empty() ? 0 : cell_offsets.size() - 1; }
   size_t node_count() const { return node_children.size() / 2; }
@@ -31,7 +31,7 @@ struct CellTree {
 //! The cells as the shared kernel code reads them: pointers into `cells`,
 //! which must outlive the view.
 inline device::mcq_cells cells_view(const CellTree& cells) {
-  return {cells.node_bounds.data(), cells.node_children.data(), cells.cell_offsets.data(),
+  return {cells.node_bounds.data(), cells.node_children.data(),  cells.cell_offsets.data(),
           cells.points.data(),      cells.cell_centroids.data(), cells.cell_normals.data()};
 }
 

@@ -63,7 +63,8 @@ SkeletonRegions build_skeleton_regions(const TubeSkeleton& skeleton, const CellT
     const float* p = &mesh.positions[3 * size_t(v)];
     int bone = nearest.find(Eigen::Vector3d(p[0], p[1], p[2])).bone;
     regions.vertex_bones[size_t(v)] = uint32_t(bone);
-    regions.vertex_scale[size_t(v)] = median_radius > 0 ? float(skeleton.bone_radius[size_t(bone)] / median_radius) : 1.0f;
+    regions.vertex_scale[size_t(v)] =
+        median_radius > 0 ? float(skeleton.bone_radius[size_t(bone)] / median_radius) : 1.0f;
   }
   std::vector<std::vector<int>> node_bones = graph.node_bones();
   regions.visible_offsets.push_back(0);

@@ -38,7 +38,8 @@ void sort_spatially(PointCloud& cloud) {
     return spread_bits(uint64_t(c.x())) | spread_bits(uint64_t(c.y())) << 1 | spread_bits(uint64_t(c.z())) << 2;
   };
   std::vector<uint64_t> keys(cloud.size());
-  for (size_t i = 0; i < cloud.size(); ++i) keys[i] = morton_of(i) << kIndexBits | (uint64_t(i) & ((uint64_t(1) << kIndexBits) - 1));
+  for (size_t i = 0; i < cloud.size(); ++i)
+    keys[i] = morton_of(i) << kIndexBits | (uint64_t(i) & ((uint64_t(1) << kIndexBits) - 1));
   std::sort(keys.begin(), keys.end());
   // The index bits name the point for clouds below 2^25 points; above, a
   // stable sort of indices by code does the same job.
@@ -65,7 +66,7 @@ void add_oriented_point(OrientedSample& sample, const Eigen::Vector3f& p, const 
   float length = n.norm();
   if (!std::isfinite(length) || length < 1e-6f) return;
   sample.points.push_back(p);
-  sample.normals.push_back(n / length);
+  sample.normals.emplace_back(n / length);
 }
 
 OrientedSample oriented_sample(const PointCloud& cloud, size_t max_points) {
@@ -79,9 +80,11 @@ OrientedSample oriented_sample(const PointCloud& cloud, size_t max_points) {
 void check_point_cloud(const PointCloud& cloud, const std::string& name) {
   if (cloud.empty()) throw InputError(name + ": the point cloud is empty");
   for (size_t i = 0; i < cloud.size(); ++i)
-    if (!cloud.points[i].allFinite()) throw InputError(name + ": point " + std::to_string(i) + " has a NaN or infinite coordinate");
+    if (!cloud.points[i].allFinite())
+      throw InputError(name + ": point " + std::to_string(i) + " has a NaN or infinite coordinate");
   if (!cloud.normals.empty() && cloud.normals.size() != cloud.size())
-    throw InputError(name + ": " + std::to_string(cloud.normals.size()) + " normals for " + std::to_string(cloud.size()) + " points");
+    throw InputError(name + ": " + std::to_string(cloud.normals.size()) + " normals for " +
+                     std::to_string(cloud.size()) + " points");
 }
 
 std::pair<Eigen::Vector3f, Eigen::Vector3f> bounding_box(const PointCloud& cloud) {

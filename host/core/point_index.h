@@ -83,7 +83,9 @@ class PointIndex {
 
   //! See median_neighbour_spacing and neighbour_spacing_quantile.
   double median_spacing() const { return median_neighbour_spacing(adaptor_.points, tree_); }
-  double spacing_quantile(double quantile) const { return neighbour_spacing_quantile(adaptor_.points, tree_, quantile); }
+  double spacing_quantile(double quantile) const {
+    return neighbour_spacing_quantile(adaptor_.points, tree_, quantile);
+  }
 
  private:
   struct Adaptor {
@@ -91,7 +93,9 @@ class PointIndex {
     size_t kdtree_get_point_count() const { return points.size(); }
     Scalar kdtree_get_pt(size_t i, size_t dim) const { return points[i][dim]; }
     template <class Box>
-    bool kdtree_get_bbox(Box&) const { return false; }
+    bool kdtree_get_bbox(Box&) const {
+      return false;
+    }
   };
   // 32-bit indices: 4 bytes a point instead of 8 (clouds stay below 2^32 points).
   using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<Scalar, Adaptor>, Adaptor, 3, uint32_t>;

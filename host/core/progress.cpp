@@ -22,9 +22,12 @@ void report_stage(const std::string& stage, bool finished, double seconds) {
     return;
   }
   if (isatty(STDERR_FILENO) == 0) return;
-  if (!finished) std::fprintf(stderr, "\r%s ...\033[K", stage.c_str());
-  else if (seconds >= 1.0) std::fprintf(stderr, "\r%s: %.1f s\033[K\n", stage.c_str(), seconds);
-  else std::fprintf(stderr, "\r\033[K");
+  if (!finished)
+    std::fprintf(stderr, "\r%s ...\033[K", stage.c_str());
+  else if (seconds >= 1.0)
+    std::fprintf(stderr, "\r%s: %.1f s\033[K\n", stage.c_str(), seconds);
+  else
+    std::fprintf(stderr, "\r\033[K");
   std::fflush(stderr);
 }
 

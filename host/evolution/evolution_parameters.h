@@ -9,13 +9,13 @@ namespace mcquad {
 //! Lengths left at 0 are derived from the cloud's local radius (see
 //! automatic_epsilon in pipeline/prepare.h), so the defaults work at any scale.
 struct EvolutionParameters {
-  unsigned cones = 4;                 //!< c
-  unsigned generators = 6;            //!< r: rays per cone
-  double alpha_max = M_PI / 18.0;     //!< maximal cone half angle, radians
-  unsigned samples = 10;              //!< m: random points per hit cell
-  double epsilon = 0.0;               //!< feasibility bound; 0 = auto (0.6 x median radius, automatic_epsilon)
-  unsigned iterations = 20;           //!< iteration cap
-  double tolerance = 0.0;             //!< stop when the error level improves by less (relative); 0 = never
+  unsigned cones = 4;              //!< c
+  unsigned generators = 6;         //!< r: rays per cone
+  double alpha_max = M_PI / 18.0;  //!< maximal cone half angle, radians
+  unsigned samples = 10;           //!< m: random points per hit cell
+  double epsilon = 0.0;            //!< feasibility bound; 0 = auto (0.6 x median radius, automatic_epsilon)
+  unsigned iterations = 20;        //!< iteration cap
+  double tolerance = 0.0;          //!< stop when the error level improves by less (relative); 0 = never
   uint32_t seed = 1;
   //! kRobust (default) adds the improvements over the paper (docs/DESIGN.md);
   //! kPaper is the paper's step exactly.

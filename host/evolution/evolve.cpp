@@ -42,8 +42,8 @@ namespace {
 //! mcq_relaxed_position, here for these only), through the guard again.
 //! Where a crease or a merged stem stops them, the next step's moves into
 //! it cross less once they are spread out (docs/DESIGN.md).
-void relax_held_back(const MeshArrays& mesh, CrossingGuard& guard, const std::vector<uint32_t>& held,
-                     float weight, std::vector<float>& positions) {
+void relax_held_back(const MeshArrays& mesh, CrossingGuard& guard, const std::vector<uint32_t>& held, float weight,
+                     std::vector<float>& positions) {
   std::vector<float> normals(positions.size(), 0.0f), relaxed = positions;
   for (uint32_t v : held)
     device::mcq_store3(normals.data(), v,
@@ -94,7 +94,9 @@ EvolutionResult evolve(EvolutionBackend& backend, const MeshArrays& mesh, const 
     IterationRecord record;
     record.iteration = i + 1;
     auto stepped = Clock::now();
-    if (crossing_guard) record.held_back_vertices = guard_step(backend, mesh, *crossing_guard, float(parameters.held_back_relaxation), before);
+    if (crossing_guard)
+      record.held_back_vertices =
+          guard_step(backend, mesh, *crossing_guard, float(parameters.held_back_relaxation), before);
     auto guarded = Clock::now();
     record.error_level = backend.error_level();
     auto end = Clock::now();

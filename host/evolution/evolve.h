@@ -10,12 +10,12 @@
 namespace mcquad {
 
 struct IterationRecord {
-  unsigned iteration = 0;   //!< 1-based
-  double error_level = 0;   //!< the paper's e-bar after this iteration
-  double seconds = 0;       //!< wall time of the step, normals, crossing guard and error level
-  double step_seconds = 0;  //!< of which the step and the normals
-  double guard_seconds = 0; //!< of which the crossing guard (robust mode)
-  double error_seconds = 0; //!< of which the error level
+  unsigned iteration = 0;         //!< 1-based
+  double error_level = 0;         //!< the paper's e-bar after this iteration
+  double seconds = 0;             //!< wall time of the step, normals, crossing guard and error level
+  double step_seconds = 0;        //!< of which the step and the normals
+  double guard_seconds = 0;       //!< of which the crossing guard (robust mode)
+  double error_seconds = 0;       //!< of which the error level
   size_t held_back_vertices = 0;  //!< vertices whose step the crossing guard shortened
 };
 

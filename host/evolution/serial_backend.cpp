@@ -16,8 +16,8 @@ void SerialBackend::load(const CellTree& cells, const MeshArrays& mesh, const Sk
 void SerialBackend::update_normals() {
   for (uint32_t v = 0; v < mesh_.vertex_count(); ++v)
     device::mcq_store3(normals_.data(), v,
-                       device::mcq_vertex_normal(positions_.data(), mesh_.faces.data(), mesh_.vertex_face_offsets.data(),
-                                                 mesh_.vertex_faces.data(), v));
+                       device::mcq_vertex_normal(positions_.data(), mesh_.faces.data(),
+                                                 mesh_.vertex_face_offsets.data(), mesh_.vertex_faces.data(), v));
 }
 
 void SerialBackend::relax(float weight) {
@@ -37,9 +37,10 @@ void SerialBackend::step(const device::mcq_step_params& params) {
   const device::mcq_regions regions = regions_view(*regions_);
   for (uint32_t v = 0; v < mesh_.vertex_count(); ++v) {
     uint32_t feasible;
-    device::mcq_store3(next_positions_.data(), v,
-                       device::mcq_evolve_vertex(positions_.data(), normals_.data(), mesh_.positions.data(),
-                                                 initial_normals_.data(), topology, cells, regions, v, params, &feasible));
+    device::mcq_store3(
+        next_positions_.data(), v,
+        device::mcq_evolve_vertex(positions_.data(), normals_.data(), mesh_.positions.data(), initial_normals_.data(),
+                                  topology, cells, regions, v, params, &feasible));
   }
   positions_.swap(next_positions_);
   update_normals();

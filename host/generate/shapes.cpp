@@ -54,9 +54,7 @@ void t_shape(ShapeBuilder& b) {
   b.tube(b.line(junction, Vec(0, -5, 0), 1.0), 1.0, false, true);  // the paper's open leg
 }
 
-void straight_tube(ShapeBuilder& b) {
-  b.tube(b.line(b.node(Vec(0, 0, -4)), Vec(0, 0, 4), 1.0), 1.0);
-}
+void straight_tube(ShapeBuilder& b) { b.tube(b.line(b.node(Vec(0, 0, -4)), Vec(0, 0, 4), 1.0), 1.0); }
 
 void bent_tube(ShapeBuilder& b) {
   // A quarter circle of radius 5 between two straight pieces, open at both ends.
@@ -136,7 +134,8 @@ void octopus(ShapeBuilder& b) {
 //! in one plane, neighbours --angle degrees apart (a broom; 20..40 is the
 //! hard range), the middle one open.
 void fan(ShapeBuilder& b, double angle_degrees) {
-  if (!(angle_degrees >= 10 && angle_degrees <= 60)) throw InputError("fan: the angle must be between 10 and 60 degrees");
+  if (!(angle_degrees >= 10 && angle_degrees <= 60))
+    throw InputError("fan: the angle must be between 10 and 60 degrees");
   int junction = b.node(Vec(0, 0, 0));
   b.tube(b.line(junction, Vec(0, 0, -5), 1.0), 1.0);
   for (int k = -1; k <= 1; ++k) {
@@ -189,12 +188,12 @@ void thin_branch(ShapeBuilder& b) {
 void tight_knot(ShapeBuilder& b) {
   // A (2,3) torus knot whose tube (radius 1) passes within one radius of
   // itself where the strands cross.
-  const double R = 4.0, a = 1.8;
+  const double r = 4.0, a = 1.8;
   const int nodes = 180;
   std::vector<int> ids;
   for (int k = 0; k < nodes; ++k) {
     double t = 2 * M_PI * k / nodes;
-    ids.push_back(b.node(Vec((R + a * std::cos(3 * t)) * std::cos(2 * t), (R + a * std::cos(3 * t)) * std::sin(2 * t),
+    ids.push_back(b.node(Vec((r + a * std::cos(3 * t)) * std::cos(2 * t), (r + a * std::cos(3 * t)) * std::sin(2 * t),
                              a * std::sin(3 * t))));
   }
   ids.push_back(ids.front());
@@ -202,15 +201,16 @@ void tight_knot(ShapeBuilder& b) {
 }
 
 void torus_knot(ShapeBuilder& b) {
-  // (2,3) torus knot; R, a and the tube radius solved so the bounding box is
+  // (2,3) torus knot; r, a and the tube radius solved so the bounding box is
   // the paper's Fig. 7 box [-24.88,4.43]x[-17.25,10.91]x[-1.71,7.41] (the
   // knot turned 30 degrees about z, then moved into place).
-  const double R = 10.7814, a = 3.56, tube = 1.0, turn = M_PI / 6;
+  const double r = 10.7814, a = 3.56, tube = 1.0, turn = M_PI / 6;
   const int nodes = 240;
   std::vector<Vec> axis;
   for (int k = 0; k < nodes; ++k) {
     double t = 2 * M_PI * k / nodes;
-    Vec p((R + a * std::cos(3 * t)) * std::cos(2 * t), (R + a * std::cos(3 * t)) * std::sin(2 * t), a * std::sin(3 * t));
+    Vec p((r + a * std::cos(3 * t)) * std::cos(2 * t), (r + a * std::cos(3 * t)) * std::sin(2 * t),
+          a * std::sin(3 * t));
     axis.push_back(Eigen::AngleAxisd(turn, Vec::UnitZ()) * p);
   }
   Vec lo = axis[0], hi = axis[0];
@@ -221,6 +221,7 @@ void torus_knot(ShapeBuilder& b) {
   Vec target_center(0.5 * (-24.88 + 4.43), 0.5 * (-17.25 + 10.91), 0.5 * (-1.71 + 7.41));
   Vec shift = target_center - 0.5 * (lo + hi);
   std::vector<int> ids;
+  ids.reserve(axis.size() + 1);
   for (const auto& p : axis) ids.push_back(b.node(p + shift));
   ids.push_back(ids.front());
   b.tube(ids, tube);
@@ -258,11 +259,12 @@ void add_outliers(PointCloud& cloud, const TubeSurface& surface, size_t count, s
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   size_t added = 0;
   while (added < count) {
-    Eigen::Vector3f p = lo - margin + Eigen::Vector3f(u(random), u(random), u(random)).cwiseProduct(hi - lo + 2 * margin);
+    Eigen::Vector3f p =
+        lo - margin + Eigen::Vector3f(u(random), u(random), u(random)).cwiseProduct(hi - lo + 2 * margin);
     double d = surface.signed_distance(p.cast<double>());
     if (std::abs(d) < surface.capsules()[surface.nearest_capsule(p.cast<double>())].radius) continue;
     cloud.points.push_back(p);
-    cloud.normals.push_back(Eigen::Vector3f::Zero());
+    cloud.normals.emplace_back(Eigen::Vector3f::Zero());
     ++added;
   }
 }
@@ -273,7 +275,8 @@ void add_outliers(PointCloud& cloud, const TubeSurface& surface, size_t count, s
 PointCloud sample_with_defects(const TubeSurface& surface, size_t count, const ShapeOptions& options,
                                std::mt19937_64& random) {
   if (options.outliers < 0 || options.outliers >= 1) throw InputError("outliers must be a fraction in [0, 1)");
-  if (options.density_ratio < 1 || !std::isfinite(options.density_ratio)) throw InputError("density ratio must be at least 1");
+  if (options.density_ratio < 1 || !std::isfinite(options.density_ratio))
+    throw InputError("density ratio must be at least 1");
   if (options.holes < 0) throw InputError("holes must not be negative");
   size_t outliers = size_t(std::lround(options.outliers * double(count)));
   size_t on_surface = count - outliers;
@@ -340,22 +343,38 @@ std::vector<std::pair<std::string, std::string>> shape_catalogue() {
 
 GeneratedShape generate_shape(const std::string& name, const ShapeOptions& options) {
   ShapeBuilder b;
-  if (name == "t-shape") t_shape(b);
-  else if (name == "torus-knot") torus_knot(b);
-  else if (name == "tube-frame") tube_frame(b);
-  else if (name == "tube") straight_tube(b);
-  else if (name == "bent-tube") bent_tube(b);
-  else if (name == "torus") torus(b);
-  else if (name == "y-fork") y_fork(b, options.angle_degrees > 0 ? options.angle_degrees : 60.0);
-  else if (name == "star") star(b, options.arms);
-  else if (name == "planar-star") planar_star(b, options.arms);
-  else if (name == "octopus") octopus(b);
-  else if (name == "fan") fan(b, options.angle_degrees > 0 ? options.angle_degrees : 30.0);
-  else if (name == "double-junction") double_junction(b);
-  else if (name == "theta") theta(b);
-  else if (name == "parallel-tubes") parallel_tubes(b);
-  else if (name == "thin-branch") thin_branch(b);
-  else if (name == "tight-knot") tight_knot(b);
+  if (name == "t-shape")
+    t_shape(b);
+  else if (name == "torus-knot")
+    torus_knot(b);
+  else if (name == "tube-frame")
+    tube_frame(b);
+  else if (name == "tube")
+    straight_tube(b);
+  else if (name == "bent-tube")
+    bent_tube(b);
+  else if (name == "torus")
+    torus(b);
+  else if (name == "y-fork")
+    y_fork(b, options.angle_degrees > 0 ? options.angle_degrees : 60.0);
+  else if (name == "star")
+    star(b, options.arms);
+  else if (name == "planar-star")
+    planar_star(b, options.arms);
+  else if (name == "octopus")
+    octopus(b);
+  else if (name == "fan")
+    fan(b, options.angle_degrees > 0 ? options.angle_degrees : 30.0);
+  else if (name == "double-junction")
+    double_junction(b);
+  else if (name == "theta")
+    theta(b);
+  else if (name == "parallel-tubes")
+    parallel_tubes(b);
+  else if (name == "thin-branch")
+    thin_branch(b);
+  else if (name == "tight-knot")
+    tight_knot(b);
   else {
     std::string known;
     for (const auto& entry : shape_catalogue()) known += (known.empty() ? "" : ", ") + entry.first;
@@ -365,7 +384,8 @@ GeneratedShape generate_shape(const std::string& name, const ShapeOptions& optio
   GeneratedShape shape = std::move(b.shape);
   shape.name = name;
   std::mt19937_64 random(options.seed);
-  shape.cloud = sample_with_defects(shape.surface, options.points ? options.points : default_points(name), options, random);
+  shape.cloud =
+      sample_with_defects(shape.surface, options.points ? options.points : default_points(name), options, random);
   size_t vertices = shape.skeleton.nodes.size();
   shape.independent_cycles = int(shape.skeleton.edges.size()) - int(vertices) + 1;
   return shape;

@@ -10,15 +10,15 @@
 namespace mcquad {
 
 struct ShapeOptions {
-  size_t points = 0;      //!< 0 = the shape's default count
-  double noise = 0;       //!< standard deviation along the normal, as a fraction of the tube radius
+  size_t points = 0;  //!< 0 = the shape's default count
+  double noise = 0;   //!< standard deviation along the normal, as a fraction of the tube radius
   uint64_t seed = 1;
-  double angle_degrees = 0;   //!< y-fork: angle between the two branches (0 = 60); fan: between neighbours (0 = 30)
-  int arms = 4;               //!< star, planar-star: valence of the junction (3..16)
+  double angle_degrees = 0;  //!< y-fork: angle between the two branches (0 = 60); fan: between neighbours (0 = 30)
+  int arms = 4;              //!< star, planar-star: valence of the junction (3..16)
   // Scan defects (issue 6's cases):
-  double outliers = 0;        //!< fraction of the points replaced by outliers at least a radius off the surface
-  double density_ratio = 1;   //!< density falls linearly along x from 1 to 1/ratio (10 = tenfold)
-  int holes = 0;              //!< patches of radius r left without points
+  double outliers = 0;       //!< fraction of the points replaced by outliers at least a radius off the surface
+  double density_ratio = 1;  //!< density falls linearly along x from 1 to 1/ratio (10 = tenfold)
+  int holes = 0;             //!< patches of radius r left without points
 };
 
 //! A synthetic cloud with its skeleton and its true surface.
@@ -27,7 +27,7 @@ struct GeneratedShape {
   PointCloud cloud;
   SkeletonData skeleton;
   TubeSurface surface;
-  int open_ends = 0;        //!< ends where the surface is open
+  int open_ends = 0;  //!< ends where the surface is open
   int independent_cycles = 0;
 };
 

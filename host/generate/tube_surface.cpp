@@ -25,7 +25,7 @@ void TubeSurface::build_index() const {
   midpoints_.clear();
   max_half_length_ = max_radius_ = 0;
   for (const auto& c : capsules_) {
-    midpoints_.push_back(0.5 * (c.a + c.b));
+    midpoints_.emplace_back(0.5 * (c.a + c.b));
     double extra = (c.open_a || c.open_b) ? kOpenExtension * c.radius : 0.0;
     max_half_length_ = std::max(max_half_length_, 0.5 * (c.b - c.a).norm() + extra);
     max_radius_ = std::max(max_radius_, c.radius);
@@ -88,7 +88,8 @@ PointCloud TubeSurface::sample(size_t n, std::mt19937_64& random, double noise) 
   cloud.normals.reserve(n);
   Progress progress("sampling", n);
   while (cloud.size() < n) {
-    size_t i = size_t(std::lower_bound(cumulative.begin(), cumulative.end(), uniform(random) * total) - cumulative.begin());
+    size_t i =
+        size_t(std::lower_bound(cumulative.begin(), cumulative.end(), uniform(random) * total) - cumulative.begin());
     i = std::min(i, capsules_.size() - 1);
     const Capsule& c = capsules_[i];
     double length = (c.b - c.a).norm();
@@ -121,8 +122,8 @@ PointCloud TubeSurface::sample(size_t n, std::mt19937_64& random, double noise) 
     }
     if (!keep) continue;
     if (noise > 0) point += noise * c.radius * gauss(random) * normal;
-    cloud.points.push_back(point.cast<float>());
-    cloud.normals.push_back(normal.cast<float>());
+    cloud.points.emplace_back(point.cast<float>());
+    cloud.normals.emplace_back(normal.cast<float>());
     if (cloud.size() % 4096 == 0) progress.update(cloud.size());
   }
   return cloud;

@@ -73,7 +73,8 @@ void write_atomically(const std::string& path, const std::function<void(const st
   fs::path target(path);
   fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   std::error_code ec;
-  if (!fs::is_directory(dir, ec)) throw OutputError(path + ": cannot write: directory " + dir.string() + " does not exist");
+  if (!fs::is_directory(dir, ec))
+    throw OutputError(path + ": cannot write: directory " + dir.string() + " does not exist");
   std::random_device entropy;
   fs::path temporary = dir / ("." + target.filename().string() + ".tmp" + std::to_string(entropy() % 1000000) +
                               target.extension().string());
@@ -83,7 +84,8 @@ void write_atomically(const std::string& path, const std::function<void(const st
     fs::remove(temporary, ec);
     std::string what = e.what();
     // Writers report the temporary's name; the user knows the target's.
-    for (size_t at; (at = what.find(temporary.string())) != std::string::npos;) what.replace(at, temporary.string().size(), path);
+    for (size_t at; (at = what.find(temporary.string())) != std::string::npos;)
+      what.replace(at, temporary.string().size(), path);
     throw OutputError(what.rfind(path, 0) == 0 ? what : path + ": " + what);
   }
   fs::rename(temporary, target, ec);

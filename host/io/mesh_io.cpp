@@ -31,7 +31,8 @@ QuadMesh triangulated(const QuadMesh& mesh) {
   for (auto f : mesh.faces()) {
     c.assign(mesh.fv_range(f).begin(), mesh.fv_range(f).end());
     auto corner = [&](size_t i) { return out.vertex_handle(unsigned(c[i].idx())); };
-    if (c.size() == 4 && (mesh.point(c[1]) - mesh.point(c[3])).sqrnorm() < (mesh.point(c[0]) - mesh.point(c[2])).sqrnorm()) {
+    if (c.size() == 4 &&
+        (mesh.point(c[1]) - mesh.point(c[3])).sqrnorm() < (mesh.point(c[0]) - mesh.point(c[2])).sqrnorm()) {
       out.add_face(corner(0), corner(1), corner(3));
       out.add_face(corner(1), corner(2), corner(3));
       continue;

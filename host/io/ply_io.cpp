@@ -17,10 +17,10 @@ enum class PlyFormat { kAscii, kBinaryLittle, kBinaryBig };
 
 struct PlyProperty {
   std::string name;
-  int size = 0;           // bytes of the scalar (or of each list item)
-  char kind = 'f';        // 'i' signed, 'u' unsigned, 'f' floating
+  int size = 0;     // bytes of the scalar (or of each list item)
+  char kind = 'f';  // 'i' signed, 'u' unsigned, 'f' floating
   bool is_list = false;
-  int count_size = 0;     // bytes of the list length
+  int count_size = 0;  // bytes of the list length
   char count_kind = 'u';
 };
 
@@ -47,13 +47,25 @@ struct PlyHeader {
 };
 
 bool scalar_type(const std::string& type, int& size, char& kind) {
-  static const std::array<std::pair<const char*, std::pair<int, char>>, 16> types{{
-      {"char", {1, 'i'}}, {"int8", {1, 'i'}}, {"uchar", {1, 'u'}}, {"uint8", {1, 'u'}},
-      {"short", {2, 'i'}}, {"int16", {2, 'i'}}, {"ushort", {2, 'u'}}, {"uint16", {2, 'u'}},
-      {"int", {4, 'i'}}, {"int32", {4, 'i'}}, {"uint", {4, 'u'}}, {"uint32", {4, 'u'}},
-      {"float", {4, 'f'}}, {"float32", {4, 'f'}}, {"double", {8, 'f'}}, {"float64", {8, 'f'}},
+  static const std::array<std::pair<const char*, std::pair<int, char>>, 16> kTypes{{
+      {"char", {1, 'i'}},
+      {"int8", {1, 'i'}},
+      {"uchar", {1, 'u'}},
+      {"uint8", {1, 'u'}},
+      {"short", {2, 'i'}},
+      {"int16", {2, 'i'}},
+      {"ushort", {2, 'u'}},
+      {"uint16", {2, 'u'}},
+      {"int", {4, 'i'}},
+      {"int32", {4, 'i'}},
+      {"uint", {4, 'u'}},
+      {"uint32", {4, 'u'}},
+      {"float", {4, 'f'}},
+      {"float32", {4, 'f'}},
+      {"double", {8, 'f'}},
+      {"float64", {8, 'f'}},
   }};
-  for (const auto& [name, info] : types) {
+  for (const auto& [name, info] : kTypes) {
     if (type == name) {
       size = info.first;
       kind = info.second;
@@ -89,10 +101,14 @@ PlyHeader parse_header(const std::string& path, std::string_view bytes) {
     if (keyword == "format") {
       std::string format, version;
       words >> format >> version;
-      if (format == "ascii") header.format = PlyFormat::kAscii;
-      else if (format == "binary_little_endian") header.format = PlyFormat::kBinaryLittle;
-      else if (format == "binary_big_endian") header.format = PlyFormat::kBinaryBig;
-      else throw fail(number, "unknown format '" + format + "'");
+      if (format == "ascii")
+        header.format = PlyFormat::kAscii;
+      else if (format == "binary_little_endian")
+        header.format = PlyFormat::kBinaryLittle;
+      else if (format == "binary_big_endian")
+        header.format = PlyFormat::kBinaryBig;
+      else
+        throw fail(number, "unknown format '" + format + "'");
       have_format = true;
     } else if (keyword == "element") {
       PlyElement element;
@@ -119,7 +135,8 @@ PlyHeader parse_header(const std::string& path, std::string_view bytes) {
         property.is_list = true;
       } else {
         words >> property.name;
-        if (!scalar_type(type, property.size, property.kind)) throw fail(number, "unknown property type '" + type + "'");
+        if (!scalar_type(type, property.size, property.kind))
+          throw fail(number, "unknown property type '" + type + "'");
       }
       if (property.name.empty()) throw fail(number, "property without a name");
       header.elements.back().properties.push_back(property);
@@ -152,7 +169,8 @@ class BinaryCursor {
 
   static double decode(const unsigned char* raw, int size, char kind) {
     switch (size) {
-      case 1: return kind == 'i' ? double(static_cast<int8_t>(raw[0])) : double(raw[0]);
+      case 1:
+        return kind == 'i' ? double(static_cast<int8_t>(raw[0])) : double(raw[0]);
       case 2: {
         uint16_t v;
         std::memcpy(&v, raw, 2);
@@ -197,8 +215,13 @@ VertexColumns find_columns(const std::string& path, const PlyElement& vertex, bo
   VertexColumns c;
   for (size_t i = 0; i < vertex.properties.size(); ++i) {
     const auto& p = vertex.properties[i];
-    int* slot = p.name == "x" ? &c.x : p.name == "y" ? &c.y : p.name == "z" ? &c.z
-              : p.name == "nx" ? &c.nx : p.name == "ny" ? &c.ny : p.name == "nz" ? &c.nz : nullptr;
+    int* slot = p.name == "x"    ? &c.x
+                : p.name == "y"  ? &c.y
+                : p.name == "z"  ? &c.z
+                : p.name == "nx" ? &c.nx
+                : p.name == "ny" ? &c.ny
+                : p.name == "nz" ? &c.nz
+                                 : nullptr;
     if (slot && !p.is_list) *slot = static_cast<int>(i);
   }
   if (c.x < 0 || c.y < 0 || c.z < 0) throw InputError(path + ": PLY vertex element lacks x, y or z");
@@ -211,13 +234,15 @@ VertexColumns find_columns(const std::string& path, const PlyElement& vertex, bo
 void store_vertex(const std::string& path, PointCloud& cloud, const VertexColumns& c, const double* values,
                   unsigned long long index) {
   Eigen::Vector3d p(values[c.x], values[c.y], values[c.z]);
-  if (!p.allFinite())
-    throw InputError(path + ": vertex " + std::to_string(index) + ": coordinate is NaN or infinite");
-  cloud.points.push_back(p.cast<float>());
+  if (!p.allFinite()) throw InputError(path + ": vertex " + std::to_string(index) + ": coordinate is NaN or infinite");
+  cloud.points.emplace_back(p.cast<float>());
   if (c.nx < 0 || c.ny < 0 || c.nz < 0) return;
-  Eigen::Vector3f n(static_cast<float>(values[c.nx]), static_cast<float>(values[c.ny]), static_cast<float>(values[c.nz]));
-  if (c.sample_stride == 0) cloud.normals.push_back(n);
-  else if (index % c.sample_stride == 0) add_oriented_point(cloud.oriented, cloud.points.back(), n);
+  Eigen::Vector3f n(static_cast<float>(values[c.nx]), static_cast<float>(values[c.ny]),
+                    static_cast<float>(values[c.nz]));
+  if (c.sample_stride == 0)
+    cloud.normals.push_back(n);
+  else if (index % c.sample_stride == 0)
+    add_oriented_point(cloud.oriented, cloud.points.back(), n);
 }
 
 void skip_binary_element(const std::string& path, const PlyElement& element, BinaryCursor& cursor) {
@@ -259,9 +284,9 @@ PointCloud read_binary_vertices(const std::string& path, std::string_view bytes,
     VertexColumns columns = find_columns(path, element, with_normals, oriented_sample);
     size_t stride = element.fixed_stride();
     if (element.count > cursor.remaining() / stride)
-      throw InputError(path + ": truncated PLY: header claims " + std::to_string(element.count) +
-                       " vertices of " + std::to_string(stride) + " bytes but only " +
-                       std::to_string(cursor.remaining()) + " bytes follow");
+      throw InputError(path + ": truncated PLY: header claims " + std::to_string(element.count) + " vertices of " +
+                       std::to_string(stride) + " bytes but only " + std::to_string(cursor.remaining()) +
+                       " bytes follow");
     cloud.points.reserve(element.count);
     std::vector<double> values(element.properties.size());
     for (unsigned long long i = 0; i < element.count; ++i) {
@@ -309,7 +334,8 @@ PointCloud read_ascii_vertices(const std::string& path, std::string_view bytes, 
         throw InputError(where + ": vertex " + std::to_string(entry) + " has " + std::to_string(fields.size()) +
                          " values, expected " + std::to_string(element->properties.size()));
       for (size_t k = 0; k < element->properties.size(); ++k)
-        if (!parse_number(fields[k], values[k])) throw InputError(where + ": '" + std::string(fields[k]) + "' is not a number");
+        if (!parse_number(fields[k], values[k]))
+          throw InputError(where + ": '" + std::string(fields[k]) + "' is not a number");
       store_vertex(where, cloud, *columns, values.data(), entry);
     }
     if (++entry == element->count) {

@@ -10,7 +10,8 @@ namespace mcquad {
 namespace {
 
 Eigen::Vector3f parse_point(const std::string& where, const std::vector<std::string_view>& fields, size_t first) {
-  if (fields.size() < first + 3) throw InputError(where + ": expected 3 coordinates, found " + std::to_string(fields.size() - first));
+  if (fields.size() < first + 3)
+    throw InputError(where + ": expected 3 coordinates, found " + std::to_string(fields.size() - first));
   double xyz[3];
   for (int k = 0; k < 3; ++k) {
     if (!parse_number(fields[first + k], xyz[k]))
@@ -56,8 +57,10 @@ PointCloud read_obj_vertices(const std::string& path) {
     auto fields = split_fields(line);
     if (fields.empty()) return;
     std::string where = path + ": line " + std::to_string(line_number);
-    if (fields[0] == "v") cloud.points.push_back(parse_point(where, fields, 1));
-    else if (fields[0] == "vn") cloud.normals.push_back(parse_point(where, fields, 1));
+    if (fields[0] == "v")
+      cloud.points.push_back(parse_point(where, fields, 1));
+    else if (fields[0] == "vn")
+      cloud.normals.push_back(parse_point(where, fields, 1));
   });
   return cloud;
 }
@@ -79,7 +82,8 @@ PointCloud read_off_vertices(const std::string& path) {
     std::string where = path + ": line " + std::to_string(line_number);
     if (state == kMagic) {
       std::string_view magic = fields[0];
-      if (magic.size() < 3 || magic.substr(magic.size() - 3) != "OFF") throw InputError(where + ": not an OFF file (no OFF magic)");
+      if (magic.size() < 3 || magic.substr(magic.size() - 3) != "OFF")
+        throw InputError(where + ": not an OFF file (no OFF magic)");
       state = kCounts;
       fields.erase(fields.begin());
       if (fields.empty()) return;
@@ -106,11 +110,17 @@ PointCloud read_off_vertices(const std::string& path) {
 PointCloud read_point_cloud(const std::string& path, bool with_normals, size_t sample_size) {
   std::string ext = file_extension(path);
   PointCloud cloud;
-  if (ext == "ply") cloud = read_ply_cloud(path, with_normals, sample_size);
-  else if (ext == "xyz" || ext == "txt" || ext == "csv" || ext == "pts") cloud = read_xyz(path);
-  else if (ext == "obj") cloud = read_obj_vertices(path);
-  else if (ext == "off") cloud = read_off_vertices(path);
-  else throw InputError(path + ": unknown point cloud extension '." + ext + "' (expected .ply, .xyz, .txt, .csv, .obj, .off)");
+  if (ext == "ply")
+    cloud = read_ply_cloud(path, with_normals, sample_size);
+  else if (ext == "xyz" || ext == "txt" || ext == "csv" || ext == "pts")
+    cloud = read_xyz(path);
+  else if (ext == "obj")
+    cloud = read_obj_vertices(path);
+  else if (ext == "off")
+    cloud = read_off_vertices(path);
+  else
+    throw InputError(path + ": unknown point cloud extension '." + ext +
+                     "' (expected .ply, .xyz, .txt, .csv, .obj, .off)");
   if (cloud.empty()) throw InputError(path + ": the point cloud is empty");
   // The other formats read every normal; the sample is taken from them.
   if (!with_normals && sample_size > 0 && cloud.oriented.empty()) cloud.oriented = oriented_sample(cloud, sample_size);

@@ -18,15 +18,16 @@ Eigen::Vector3d position(const std::vector<float>& positions, uint32_t v) {
 //! Unit normal of quad f: its vector area (core/quad_mesh.h), as the kernels take it.
 Eigen::Vector3d face_normal(const MeshArrays& mesh, const std::vector<float>& positions, size_t f) {
   const uint32_t* q = &mesh.faces[4 * f];
-  Eigen::Vector3d n = quad_vector_area({position(positions, q[0]), position(positions, q[1]), position(positions, q[2]),
-                                        position(positions, q[3])});
+  Eigen::Vector3d n = quad_vector_area(
+      {position(positions, q[0]), position(positions, q[1]), position(positions, q[2]), position(positions, q[3])});
   double length = n.norm();
   return length > 0 ? Eigen::Vector3d(n / length) : n;
 }
 
 //! Keeps the face pairs only (single faces have their floors instead).
 void drop_single_faces(std::vector<std::pair<int, int>>& defects) {
-  defects.erase(std::remove_if(defects.begin(), defects.end(), [](const auto& d) { return d.second < 0; }), defects.end());
+  defects.erase(std::remove_if(defects.begin(), defects.end(), [](const auto& d) { return d.second < 0; }),
+                defects.end());
 }
 
 bool vertex_moved(const std::vector<float>& before, const std::vector<float>& after, uint32_t v) {
@@ -104,7 +105,7 @@ std::vector<uint32_t> CrossingGuard::apply(const std::vector<float>& before, std
   const std::vector<float> proposed = after;
   // Per vertex, the fraction of its proposed step it takes.
   std::vector<float> fraction(mesh_.vertex_count(), 1.0f);
-  size_t held_back = 0;  // how many vertices have been shortened so far
+  size_t held_back = 0;            // how many vertices have been shortened so far
   auto step_length = [&](int f) {  // the longest step a corner of face f takes
     double longest = 0;
     for (int k = 0; k < 4; ++k) {

@@ -68,13 +68,13 @@ BlockOrientation orient_cube_block(const std::vector<Eigen::Vector3d>& bone_dire
       Eigen::Matrix3d r = frame_from(d[a], d[b]);
       candidates.push_back(r);
       for (double angle : {M_PI / 4, -M_PI / 4, M_PI / 8, -M_PI / 8})
-        candidates.push_back(r * Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitX()).toRotationMatrix());
+        candidates.emplace_back(r * Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitX()).toRotationMatrix());
       // Bisector of two bones on a block diagonal: suits acute forks.
       Eigen::Vector3d bisector = (d[a] + d[b]).normalized();
       if (bisector.allFinite() && (d[a] + d[b]).norm() > 1e-6) {
         Eigen::Matrix3d s = frame_from(bisector, d[a]);
-        candidates.push_back(s * Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitX()).toRotationMatrix() *
-                             Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitZ()).toRotationMatrix());
+        candidates.emplace_back(s * Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitX()).toRotationMatrix() *
+                                Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitZ()).toRotationMatrix());
       }
     }
   }
@@ -127,9 +127,9 @@ std::vector<Port> add_cube_block(QuadSoup& soup, const Eigen::Vector3d& center, 
     u[(axis + 1) % 3] = 1;
     v[(axis + 2) % 3] = 1;
     if (sign < 0) std::swap(u, v);  // keeps u x v = outward normal
-    static const int ring_xy[8][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
+    static const int kRingXy[8][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
     std::array<int, 8> ring;
-    for (int k = 0; k < 8; ++k) ring[k] = vertex(normal + ring_xy[k][0] * u + ring_xy[k][1] * v);
+    for (int k = 0; k < 8; ++k) ring[k] = vertex(normal + kRingXy[k][0] * u + kRingXy[k][1] * v);
     int bone = bone_of_face[face];
     if (bone < 0 || closed) soup.add_quad_fan(vertex(normal), std::vector<int>(ring.begin(), ring.end()));
     if (bone < 0) continue;

@@ -182,7 +182,8 @@ std::vector<std::pair<int, int>> intersecting_face_pairs(const MeshTriangles& tr
   entries.reserve(only_faces ? 8 * wanted_cells.size() : 2 * n);
   for (size_t t = 0; t < n; ++t)
     for_each_cell(t, [&](uint64_t k) {
-      if (!only_faces || std::binary_search(wanted_cells.begin(), wanted_cells.end(), k)) entries.emplace_back(k, uint32_t(t));
+      if (!only_faces || std::binary_search(wanted_cells.begin(), wanted_cells.end(), k))
+        entries.emplace_back(k, uint32_t(t));
     });
   std::sort(entries.begin(), entries.end());
   std::vector<uint32_t> runs;  // where each cell's run of entries begins

@@ -26,7 +26,9 @@ struct MeshTriangles {
   std::vector<int> face;                    //!< per triangle: the face it came from
 
   size_t size() const { return face.size(); }
-  const Eigen::Vector3d& corner(size_t triangle, int k) const { return positions[size_t(corners[triangle][size_t(k)])]; }
+  const Eigen::Vector3d& corner(size_t triangle, int k) const {
+    return positions[size_t(corners[triangle][size_t(k)])];
+  }
   Eigen::Vector3d centroid(size_t triangle) const {
     return (corner(triangle, 0) + corner(triangle, 1) + corner(triangle, 2)) / 3.0;
   }

@@ -17,7 +17,7 @@ SweepPath resample_polyline(const std::vector<Eigen::Vector3d>& polyline, int se
     while (piece + 2 < line.size() && cumulative[piece + 1] < s) ++piece;
     double span = cumulative[piece + 1] - cumulative[piece];
     double t = span > 0 ? std::clamp((s - cumulative[piece]) / span, 0.0, 1.0) : 0.0;
-    path.points.push_back(line[piece] + t * (line[piece + 1] - line[piece]));
+    path.points.emplace_back(line[piece] + t * (line[piece + 1] - line[piece]));
     path.arc_length.push_back(s);
   }
   size_t n = path.points.size();
@@ -35,14 +35,15 @@ SweepPath resample_polyline(const std::vector<Eigen::Vector3d>& polyline, int se
   return path;
 }
 
-std::vector<Eigen::Vector3d> hermite_curve(const Eigen::Vector3d& a, const Eigen::Vector3d& ta, const Eigen::Vector3d& b,
-                                           const Eigen::Vector3d& tb, int samples, double weight_a, double weight_b) {
+std::vector<Eigen::Vector3d> hermite_curve(const Eigen::Vector3d& a, const Eigen::Vector3d& ta,
+                                           const Eigen::Vector3d& b, const Eigen::Vector3d& tb, int samples,
+                                           double weight_a, double weight_b) {
   double chord = (b - a).norm();
   std::vector<Eigen::Vector3d> curve;
   for (int k = 0; k <= samples; ++k) {
     double t = double(k) / samples, t2 = t * t, t3 = t2 * t;
-    curve.push_back((2 * t3 - 3 * t2 + 1) * a + (t3 - 2 * t2 + t) * weight_a * chord * ta + (-2 * t3 + 3 * t2) * b +
-                    (t3 - t2) * weight_b * chord * tb);
+    curve.emplace_back((2 * t3 - 3 * t2 + 1) * a + (t3 - 2 * t2 + t) * weight_a * chord * ta + (-2 * t3 + 3 * t2) * b +
+                       (t3 - t2) * weight_b * chord * tb);
   }
   return curve;
 }

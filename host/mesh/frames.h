@@ -21,9 +21,9 @@ SweepPath resample_polyline(const std::vector<Eigen::Vector3d>& polyline, int se
 //! sampled densely; the tangents are scaled by the chord length times
 //! `weight_a` and `weight_b` (a larger weight keeps the curve straighter
 //! longer at that end).
-std::vector<Eigen::Vector3d> hermite_curve(const Eigen::Vector3d& a, const Eigen::Vector3d& ta, const Eigen::Vector3d& b,
-                                           const Eigen::Vector3d& tb, int samples, double weight_a = 1.0,
-                                           double weight_b = 1.0);
+std::vector<Eigen::Vector3d> hermite_curve(const Eigen::Vector3d& a, const Eigen::Vector3d& ta,
+                                           const Eigen::Vector3d& b, const Eigen::Vector3d& tb, int samples,
+                                           double weight_a = 1.0, double weight_b = 1.0);
 
 //! Rotation-minimizing frames along the path (double reflection, Wang et al.
 //! 2008): u[0] = initial (made perpendicular to the first tangent), each next

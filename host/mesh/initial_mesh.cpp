@@ -40,7 +40,9 @@ std::string point_text(const Eigen::Vector3d& p) {
   return s.str();
 }
 
-std::string node_name(const SkeletonGraph& graph, int node) { return "skeleton node at " + point_text(graph.positions[node]); }
+std::string node_name(const SkeletonGraph& graph, int node) {
+  return "skeleton node at " + point_text(graph.positions[node]);
+}
 
 //! A point at arc length s along a polyline, with the unit tangent there.
 std::pair<Eigen::Vector3d, Eigen::Vector3d> point_at(const std::vector<Eigen::Vector3d>& line, double s) {
@@ -81,8 +83,13 @@ class MeshAssembler {
  public:
   MeshAssembler(const TubeSkeleton& skeleton, const PointCloud& cloud, const PointIndex<float>& cloud_index,
                 const InitialMeshOptions& options, const std::string& source)
-      : graph_(skeleton.graph), skeleton_(skeleton), cloud_(cloud), options_(options), source_(source),
-        cloud_index_(cloud_index), spacing_(sample_spacing()) {}
+      : graph_(skeleton.graph),
+        skeleton_(skeleton),
+        cloud_(cloud),
+        options_(options),
+        source_(source),
+        cloud_index_(cloud_index),
+        spacing_(sample_spacing()) {}
 
   //! Returns whether the preference mattered: some junction of at most six
   //! bones got the general block.
@@ -118,7 +125,8 @@ class MeshAssembler {
         return options_.start_fraction * distance_to_cloud(center, direction, wanted / options_.start_fraction);
       };
       if (cube_fits) {
-        ports = add_cube_block(soup_, center, size, cube, [&](const Eigen::Vector3d& d) { return reach(d, size); }, closed);
+        ports = add_cube_block(
+            soup_, center, size, cube, [&](const Eigen::Vector3d& d) { return reach(d, size); }, closed);
       } else {
         JunctionLayout layout;
         try {
@@ -159,8 +167,9 @@ class MeshAssembler {
     std::vector<float> moved = arrays.positions;
     double margin = 2.0 * spacing_;
     for (auto v : mesh.vertices()) {
-      device::mcq_vec3 nv = device::mcq_vertex_normal(arrays.positions.data(), arrays.faces.data(), arrays.vertex_face_offsets.data(),
-                                                      arrays.vertex_faces.data(), uint32_t(v.idx()));
+      device::mcq_vec3 nv =
+          device::mcq_vertex_normal(arrays.positions.data(), arrays.faces.data(), arrays.vertex_face_offsets.data(),
+                                    arrays.vertex_faces.data(), uint32_t(v.idx()));
       Eigen::Vector3d n(nv.x, nv.y, nv.z);
       const auto& q = mesh.point(v);
       Eigen::Vector3d p(q[0], q[1], q[2]);
@@ -175,7 +184,8 @@ class MeshAssembler {
     for (auto v : mesh.vertices()) {
       const float* m = &moved[3 * size_t(v.idx())];
       const float* before = &arrays.positions[3 * size_t(v.idx())];
-      if (m[0] != before[0] || m[1] != before[1] || m[2] != before[2]) mesh.set_point(v, QuadMesh::Point(m[0], m[1], m[2]));
+      if (m[0] != before[0] || m[1] != before[1] || m[2] != before[2])
+        mesh.set_point(v, QuadMesh::Point(m[0], m[1], m[2]));
     }
   }
   int open_ends() const { return open_ends_; }
@@ -185,7 +195,8 @@ class MeshAssembler {
   double tube_radius(int node, int next) const {
     for (size_t b = 0; b < graph_.edges.size(); ++b) {
       const auto& e = graph_.edges[b];
-      if ((e[0] == node && e[1] == next) || (e[1] == node && e[0] == next)) return options_.start_fraction * skeleton_.bone_radius[b];
+      if ((e[0] == node && e[1] == next) || (e[1] == node && e[0] == next))
+        return options_.start_fraction * skeleton_.bone_radius[b];
     }
     return options_.start_fraction * skeleton_.node_radius[node];
   }
@@ -291,7 +302,8 @@ class MeshAssembler {
     double radius_first = start_port ? start_port->radius : tube_radius(first, branch.nodes[1]);
     double radius_last = end_port ? end_port->radius : tube_radius(last, branch.nodes[branch.nodes.size() - 2]);
     double radius_mid = 0;
-    for (size_t k = 0; k + 1 < branch.nodes.size(); ++k) radius_mid += tube_radius(branch.nodes[k], branch.nodes[k + 1]);
+    for (size_t k = 0; k + 1 < branch.nodes.size(); ++k)
+      radius_mid += tube_radius(branch.nodes[k], branch.nodes[k + 1]);
     if (branch.closed) radius_mid += tube_radius(last, first);
     radius_mid /= double(branch.closed ? branch.nodes.size() : branch.nodes.size() - 1);
 
@@ -337,13 +349,16 @@ class MeshAssembler {
     std::array<int, kRing> previous = start_ring;
     for (int k = 1; k <= k_end; ++k) {
       std::array<int, kRing> ring;
-      if (k == k_end && (end_port || branch.closed)) ring = end_ring;
-      else ring = make_ring(path, u, k, radius_at(k), twist * path.arc_length[k] / path.length());
+      if (k == k_end && (end_port || branch.closed))
+        ring = end_ring;
+      else
+        ring = make_ring(path, u, k, radius_at(k), twist * path.arc_length[k] / path.length());
       connect_rings(previous, ring);
       previous = ring;
     }
     if (!branch.closed && !start_port) finish_end(first, start_ring, path.points[0], -path.tangents[0], radius_at(0));
-    if (!branch.closed && !end_port) finish_end(last, previous, path.points.back(), path.tangents.back(), radius_at(k_end));
+    if (!branch.closed && !end_port)
+      finish_end(last, previous, path.points.back(), path.tangents.back(), radius_at(k_end));
   }
 
   static std::vector<Eigen::Vector3d> closed_copy(std::vector<Eigen::Vector3d> line) {
@@ -384,14 +399,15 @@ class MeshAssembler {
       centre += offset;
     }
     for (int i = 0; i < kRing; ++i)
-      ring[i] = soup_.add_vertex(centre + std::min(radius, options_.start_fraction * distance[size_t(i)]) * radial[size_t(i)]);
+      ring[i] = soup_.add_vertex(centre +
+                                 std::min(radius, options_.start_fraction * distance[size_t(i)]) * radial[size_t(i)]);
     return ring;
   }
 
   //! The cyclic offset of `target` (CCW about `tangent`) that best continues
   //! the swept frame, and the twist left over, in (-pi, pi].
-  double closing_twist(const std::array<int, kRing>& target, const Eigen::Vector3d& center, const Eigen::Vector3d& tangent,
-                       const Eigen::Vector3d& u, int& best_offset) {
+  double closing_twist(const std::array<int, kRing>& target, const Eigen::Vector3d& center,
+                       const Eigen::Vector3d& tangent, const Eigen::Vector3d& u, int& best_offset) {
     double best = 1e30, best_twist = 0;
     for (int offset = 0; offset < kRing; ++offset) {
       double sin_sum = 0, cos_sum = 0;
@@ -433,19 +449,24 @@ class MeshAssembler {
     // Like the rings, the cap stops at the start fraction of the way to the
     // cloud: where two merged tubes end side by side (acute_junctions.h) the
     // cloud's end is notched in the middle, nearer than the radius.
-    radius = std::min(radius, options_.start_fraction * distance_to_cloud(center, outward, radius / options_.start_fraction));
+    radius = std::min(radius,
+                      options_.start_fraction * distance_to_cloud(center, outward, radius / options_.start_fraction));
     std::array<int, kRing> cap_ring;
     for (int i = 0; i < kRing; ++i) {
       Eigen::Vector3d radial = soup_.vertices[ring[i]] - center;
       cap_ring[i] = soup_.add_vertex(center + 0.45 * radius * outward + 0.8 * radial, true);
     }
-    if (ccw_about_outward) connect_rings(ring, cap_ring);
-    else connect_rings(cap_ring, ring);
+    if (ccw_about_outward)
+      connect_rings(ring, cap_ring);
+    else
+      connect_rings(cap_ring, ring);
     int middle = soup_.add_vertex(center + 0.8 * radius * outward, true);
     for (int k = 0; k < 4; ++k) {
       int a = cap_ring[2 * k], b = cap_ring[2 * k + 1], c = cap_ring[(2 * k + 2) % kRing];
-      if (ccw_about_outward) soup_.quads.push_back({middle, a, b, c});
-      else soup_.quads.push_back({middle, c, b, a});
+      if (ccw_about_outward)
+        soup_.quads.push_back({middle, a, b, c});
+      else
+        soup_.quads.push_back({middle, c, b, a});
     }
     for (int id : ring) soup_.irregular_allowed[id] = true;
   }
@@ -470,10 +491,11 @@ QuadMesh to_openmesh(const QuadSoup& soup, const std::string& source) {
   for (const auto& p : soup.vertices) handles.push_back(mesh.add_vertex(QuadMesh::Point(p.x(), p.y(), p.z())));
   for (size_t f = 0; f < soup.quads.size(); ++f) {
     const auto& q = soup.quads[f];
-    auto face = mesh.add_face(std::vector<QuadMesh::VertexHandle>{handles[q[0]], handles[q[1]], handles[q[2]], handles[q[3]]});
+    auto face =
+        mesh.add_face(std::vector<QuadMesh::VertexHandle>{handles[q[0]], handles[q[1]], handles[q[2]], handles[q[3]]});
     if (!face.is_valid())
-      throw UnsupportedError(source + ": the initial mesh is not a manifold at quad " + std::to_string(f) +
-                             " (at " + point_text(soup.vertices[size_t(q[0])]) +
+      throw UnsupportedError(source + ": the initial mesh is not a manifold at quad " + std::to_string(f) + " (at " +
+                             point_text(soup.vertices[size_t(q[0])]) +
                              "): two tubes or blocks of this skeleton overlap there");
   }
   return mesh;
@@ -522,8 +544,9 @@ int refinement_levels(const QuadMesh& mesh, const InitialMeshOptions& options) {
   } else if (options.resolution > 0) {
     levels = std::max(0, int(std::ceil(std::log2(mean_edge_length(mesh) / options.resolution) - 1e-9)));
   }
-  if (levels > 7) throw UnsupportedError("the requested resolution needs " + std::to_string(levels) +
-                                         " refinement levels (at most 7 are supported)");
+  if (levels > 7)
+    throw UnsupportedError("the requested resolution needs " + std::to_string(levels) +
+                           " refinement levels (at most 7 are supported)");
   return levels;
 }
 
@@ -535,8 +558,9 @@ struct CoarseMesh {
   bool preference_mattered = false;  //!< some junction of at most six bones got the general block
 };
 
-CoarseMesh assemble_coarse_mesh(const TubeSkeleton& skeleton, const PointCloud& cloud, const PointIndex<float>& cloud_index,
-                                const InitialMeshOptions& options, const std::string& source, BlockPreference preference);
+CoarseMesh assemble_coarse_mesh(const TubeSkeleton& skeleton, const PointCloud& cloud,
+                                const PointIndex<float>& cloud_index, const InitialMeshOptions& options,
+                                const std::string& source, BlockPreference preference);
 //! The coarse mesh refined `levels` times, folds relaxed, moved back inside the cloud.
 QuadMesh refined(const CoarseMesh& coarse, int levels);
 
@@ -591,14 +615,16 @@ QuadMesh refined(const CoarseMesh& coarse, int levels) {
   return mesh;
 }
 
-CoarseMesh assemble_coarse_mesh(const TubeSkeleton& skeleton, const PointCloud& cloud, const PointIndex<float>& cloud_index,
-                                const InitialMeshOptions& options, const std::string& source, BlockPreference preference) {
+CoarseMesh assemble_coarse_mesh(const TubeSkeleton& skeleton, const PointCloud& cloud,
+                                const PointIndex<float>& cloud_index, const InitialMeshOptions& options,
+                                const std::string& source, BlockPreference preference) {
   CoarseMesh coarse;
   coarse.assembler = std::make_unique<MeshAssembler>(skeleton, cloud, cloud_index, options, source);
   MeshAssembler& assembler = *coarse.assembler;
   coarse.preference_mattered = assembler.build_blocks(options.stage == ConstructionStage::kBlocks, preference);
   if (options.stage == ConstructionStage::kBlocks) {
-    if (assembler.soup().quads.empty()) throw InputError(source + ": the skeleton has no junction, so there are no blocks");
+    if (assembler.soup().quads.empty())
+      throw InputError(source + ": the skeleton has no junction, so there are no blocks");
   } else {
     assembler.build_chains();
   }

@@ -19,10 +19,10 @@ enum class EndMode { kAuto, kOpen, kCapped };
 enum class ConstructionStage { kBlocks, kExtruded, kRefined };
 
 struct InitialMeshOptions {
-  double start_fraction = 0.7;   //!< initial mesh radius as a fraction of the local cloud radius
-  EndMode ends = EndMode::kAuto; //!< open/capped ends; auto decides from the cloud
-  double resolution = 0;         //!< target edge length; 0 = auto (16 vertices around a tube)
-  size_t target_vertices = 0;    //!< alternatively, refine until at least this many vertices
+  double start_fraction = 0.7;    //!< initial mesh radius as a fraction of the local cloud radius
+  EndMode ends = EndMode::kAuto;  //!< open/capped ends; auto decides from the cloud
+  double resolution = 0;          //!< target edge length; 0 = auto (16 vertices around a tube)
+  size_t target_vertices = 0;     //!< alternatively, refine until at least this many vertices
   ConstructionStage stage = ConstructionStage::kRefined;
   //! Junctions whose bones fork more acutely move to where the cloud's tubes
   //! part (skeleton/acute_junctions.h); 0 keeps every junction where it is.

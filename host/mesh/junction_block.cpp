@@ -19,8 +19,7 @@ double tube_union_reach(const JunctionBones& bones, const Eigen::Vector3d& direc
 
 std::vector<Port> add_junction_block(QuadSoup& soup, const Eigen::Vector3d& center, const JunctionLayout& layout,
                                      const JunctionBones& bones,
-                                     const std::function<double(const Eigen::Vector3d&, double)>& reach,
-                                     bool closed) {
+                                     const std::function<double(const Eigen::Vector3d&, double)>& reach, bool closed) {
   auto place = [&](Eigen::Vector3d direction) {
     if (direction.norm() < 1e-9) direction = Eigen::Vector3d::UnitZ();
     direction.normalize();

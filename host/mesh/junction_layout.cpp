@@ -40,12 +40,15 @@ std::vector<Facet> hull_facets(const std::vector<Vec>& d, double eps) {
           std::vector<int> on_plane;
           for (int l = 0; l < n && supporting; ++l) {
             double s = m.dot(d[l]) - h;
-            if (s > eps) supporting = false;
-            else if (s > -eps) on_plane.push_back(l);
+            if (s > eps)
+              supporting = false;
+            else if (s > -eps)
+              on_plane.push_back(l);
           }
           if (!supporting) continue;
           bool known = false;
-          for (size_t f = 0; f < facets.size() && !known; ++f) known = sets[f] == on_plane && facets[f].normal.dot(m) > 0;
+          for (size_t f = 0; f < facets.size() && !known; ++f)
+            known = sets[f] == on_plane && facets[f].normal.dot(m) > 0;
           if (known) continue;
           // Counter-clockwise about m, round the points' centroid.
           Vec centroid = Vec::Zero();
@@ -92,10 +95,10 @@ std::vector<Facet> sphere_hull(const std::vector<Vec>& d) {
 }
 
 struct HullEdge {
-  int a, b;        //!< a < b
-  int facet_ab;    //!< the facet holding the directed edge a -> b
+  int a, b;      //!< a < b
+  int facet_ab;  //!< the facet holding the directed edge a -> b
   int facet_ba;
-  double length;   //!< angle between the two bones
+  double length;  //!< angle between the two bones
 };
 
 struct UnionFind {
@@ -141,7 +144,7 @@ class LayoutSearch {
     for (size_t v = 0; v < d.size(); ++v) {
       Vec e1 = d[v].unitOrthogonal(), e2 = d[v].cross(e1);
       auto angle = [&](int e) {
-        Vec w = d[size_t(other(e, int(v)))];
+        const Vec& w = d[size_t(other(e, int(v)))];
         return std::atan2(w.dot(e2), w.dot(e1));
       };
       std::sort(incident_[v].begin(), incident_[v].end(), [&](int x, int y) { return angle(x) < angle(y); });
@@ -150,7 +153,8 @@ class LayoutSearch {
     // and near-regular ones are found at once.
     order_.resize(edges_.size());
     std::iota(order_.begin(), order_.end(), 0);
-    std::stable_sort(order_.begin(), order_.end(), [&](int x, int y) { return edges_[size_t(x)].length < edges_[size_t(y)].length; });
+    std::stable_sort(order_.begin(), order_.end(),
+                     [&](int x, int y) { return edges_[size_t(x)].length < edges_[size_t(y)].length; });
     copies_.assign(edges_.size(), -1);
     degree_.assign(d.size(), 0);
     open_.assign(d.size(), 0);

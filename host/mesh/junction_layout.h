@@ -21,8 +21,8 @@ void check_junction_valence(size_t valence);
 //! split turns each of those quads into the 8-vertex ring a tube attaches to.
 //! Its corners sit between the bones, its edges separate neighbouring bones.
 struct JunctionLayout {
-  std::vector<Eigen::Vector3d> corner_directions;   //!< unit directions of the polyhedron's vertices
-  std::vector<std::array<int, 2>> edges;            //!< polyhedron edges (corner ids)
+  std::vector<Eigen::Vector3d> corner_directions;  //!< unit directions of the polyhedron's vertices
+  std::vector<std::array<int, 2>> edges;           //!< polyhedron edges (corner ids)
   //! Per bone: its quad, as 4 corners counter-clockwise seen from outside,
   //! and the edge between corner k and corner k+1.
   std::vector<std::array<int, 4>> bone_corners;

@@ -14,14 +14,17 @@ MeshArrays flatten_mesh(const QuadMesh& mesh) {
   }
   std::vector<uint32_t> counts(mesh.n_vertices() + 1, 0);
   for (auto f : mesh.faces()) {
-    if (mesh.valence(f) != 4) throw UnsupportedError("the mesh has a face with " + std::to_string(mesh.valence(f)) + " sides; only quads are supported");
+    if (mesh.valence(f) != 4)
+      throw UnsupportedError("the mesh has a face with " + std::to_string(mesh.valence(f)) +
+                             " sides; only quads are supported");
     for (auto v : mesh.fv_range(f)) {
       arrays.faces.push_back(uint32_t(v.idx()));
       ++counts[v.idx() + 1];
     }
   }
   arrays.vertex_face_offsets.resize(mesh.n_vertices() + 1, 0);
-  for (size_t v = 0; v < mesh.n_vertices(); ++v) arrays.vertex_face_offsets[v + 1] = arrays.vertex_face_offsets[v] + counts[v + 1];
+  for (size_t v = 0; v < mesh.n_vertices(); ++v)
+    arrays.vertex_face_offsets[v + 1] = arrays.vertex_face_offsets[v] + counts[v + 1];
   arrays.vertex_faces.resize(arrays.faces.size());
   std::vector<uint32_t> cursor(arrays.vertex_face_offsets.begin(), arrays.vertex_face_offsets.end() - 1);
   for (size_t f = 0; f < arrays.face_count(); ++f)

@@ -12,11 +12,11 @@ namespace mcquad {
 //! after the topology is final: positions as floats, quads as 4 indices,
 //! vertex->face adjacency in CSR form. OpenCL buffers mirror it one to one.
 struct MeshArrays {
-  std::vector<float> positions;              //!< 3 per vertex
-  std::vector<uint32_t> faces;               //!< 4 per quad, counter-clockwise seen from outside
-  std::vector<uint32_t> vertex_face_offsets; //!< vertex v's faces: vertex_faces[offsets[v] .. offsets[v+1])
+  std::vector<float> positions;               //!< 3 per vertex
+  std::vector<uint32_t> faces;                //!< 4 per quad, counter-clockwise seen from outside
+  std::vector<uint32_t> vertex_face_offsets;  //!< vertex v's faces: vertex_faces[offsets[v] .. offsets[v+1])
   std::vector<uint32_t> vertex_faces;
-  std::vector<uint32_t> boundary;            //!< 1 for a vertex on an open boundary, else 0
+  std::vector<uint32_t> boundary;  //!< 1 for a vertex on an open boundary, else 0
 
   size_t vertex_count() const { return positions.size() / 3; }
   size_t face_count() const { return faces.size() / 4; }

@@ -64,7 +64,8 @@ QuadShape measure_quad_shape(const QuadMesh& mesh) {
 }
 
 nlohmann::json to_json(const QuadShape& s) {
-  return {{"scaled_jacobian", {{"min", s.min_scaled_jacobian}, {"p5", s.p5_scaled_jacobian}, {"mean", s.mean_scaled_jacobian}}},
+  return {{"scaled_jacobian",
+           {{"min", s.min_scaled_jacobian}, {"p5", s.p5_scaled_jacobian}, {"mean", s.mean_scaled_jacobian}}},
           {"faces_scaled_jacobian_below_half", s.faces_below_half},
           {"edge_ratio", {{"max", s.max_edge_ratio}, {"p95", s.p95_edge_ratio}}},
           {"corner_angle_degrees", {{"min", s.min_angle}, {"max", s.max_angle}}}};

@@ -34,7 +34,7 @@ std::vector<Eigen::Vector3d> boundary_loop_centres(const QuadMesh& mesh) {
       ++corners;
       walk = mesh.next_halfedge_handle(walk);
     } while (walk != h);
-    centres.push_back(sum / corners);
+    centres.emplace_back(sum / corners);
   }
   return centres;
 }
@@ -117,7 +117,7 @@ double winding_number(const QuadMesh& mesh, const Eigen::Vector3d& p) {
   double total = 0;
   for (auto f : mesh.faces()) {
     std::vector<Eigen::Vector3d> c;
-    for (auto v : mesh.fv_range(f)) c.push_back(point_of(mesh, v) - p);
+    for (auto v : mesh.fv_range(f)) c.emplace_back(point_of(mesh, v) - p);
     for (size_t k = 1; k + 1 < c.size(); ++k) {
       const Eigen::Vector3d &a = c[0], &b = c[k], &d = c[k + 1];
       double la = a.norm(), lb = b.norm(), ld = d.norm();
@@ -180,7 +180,7 @@ QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, co
   std::vector<double> uncovered = cloud_to_mesh_distances(mesh, cloud, kMaxCloudPoints);
   size_t stride = cloud_sample_stride(cloud.size(), kMaxCloudPoints);
   for (size_t k : largest_first(uncovered, QualityMetrics::kMaxSites))
-    m.uncovered_sites.push_back(cloud.points[k * stride].cast<double>());
+    m.uncovered_sites.emplace_back(cloud.points[k * stride].cast<double>());
   m.cloud_to_mesh = summarize_distances(std::move(uncovered));
   std::vector<float> positions;
   positions.reserve(3 * mesh.n_vertices());
@@ -190,13 +190,16 @@ QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, co
   m.cloud_spacing = cells.point_spacing;
   if ((oriented && !oriented->empty()) || skeleton) {
     bool by_normals = oriented && !oriented->empty();
-    std::vector<int> inward = by_normals ? faces_against_normals(mesh, *oriented) : inward_face_indices(mesh, *skeleton);
+    std::vector<int> inward =
+        by_normals ? faces_against_normals(mesh, *oriented) : inward_face_indices(mesh, *skeleton);
     m.inward_reference = by_normals ? "scan normals" : "skeleton";
     m.inward_faces = long(inward.size());
     m.inward_area_fraction = area_fraction(mesh, inward);
     std::vector<double> areas;
+    areas.reserve(inward.size());
     for (int f : inward) areas.push_back(face_vector_area(mesh, mesh.face_handle(f)).norm());
-    for (size_t k : largest_first(areas, QualityMetrics::kMaxSites)) m.inward_sites.push_back(face_centroid(mesh, inward[k]));
+    for (size_t k : largest_first(areas, QualityMetrics::kMaxSites))
+      m.inward_sites.push_back(face_centroid(mesh, inward[k]));
   }
   std::vector<Eigen::Vector3d> loops = boundary_loop_centres(mesh);
   if (loops.size() > QualityMetrics::kMaxSites) loops.resize(QualityMetrics::kMaxSites);
@@ -205,12 +208,14 @@ QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, co
     if (!is_folded(mesh, e)) continue;
     if (++m.folded_edges > QualityMetrics::kMaxSites) continue;
     auto h = mesh.halfedge_handle(e, 0);
-    m.fold_sites.push_back(0.5 * (point_of(mesh, mesh.from_vertex_handle(h)) + point_of(mesh, mesh.to_vertex_handle(h))));
+    m.fold_sites.emplace_back(0.5 *
+                              (point_of(mesh, mesh.from_vertex_handle(h)) + point_of(mesh, mesh.to_vertex_handle(h))));
   }
   std::vector<std::pair<int, int>> crossing = intersecting_face_pairs(mesh);
   m.intersecting_face_pairs = crossing.size();
   for (size_t k = 0; k < crossing.size() && k < QualityMetrics::kMaxCrossingSites; ++k)
-    m.crossing_sites.push_back(0.5 * (face_centroid(mesh, crossing[k].first) + face_centroid(mesh, crossing[k].second)));
+    m.crossing_sites.emplace_back(0.5 *
+                                  (face_centroid(mesh, crossing[k].first) + face_centroid(mesh, crossing[k].second)));
   m.quad_shape = measure_quad_shape(mesh);
   std::vector<double> badness;  // minus the scaled Jacobian, so that the worst come first
   for (auto f : mesh.faces()) {
@@ -254,8 +259,10 @@ nlohmann::json to_json(const QualityMetrics& m) {
     return out;
   };
   j["crossing_sites"] = sites(m.crossing_sites);
-  j["worst_sites"] = {{"folds", sites(m.fold_sites)}, {"worst_quads", sites(m.worst_quad_sites)},
-                      {"inward_faces", sites(m.inward_sites)}, {"open_ends", sites(m.boundary_sites)},
+  j["worst_sites"] = {{"folds", sites(m.fold_sites)},
+                      {"worst_quads", sites(m.worst_quad_sites)},
+                      {"inward_faces", sites(m.inward_sites)},
+                      {"open_ends", sites(m.boundary_sites)},
                       {"uncovered_cloud", sites(m.uncovered_sites)},
                       {"farthest_vertices", sites(m.off_cloud_sites)}};
   return j;

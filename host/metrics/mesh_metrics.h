@@ -37,13 +37,13 @@ std::vector<int> irregular_vertices(const QuadMesh& mesh);
 struct QualityMetrics {
   MeshStatistics statistics;
   DistanceSummary mesh_to_cloud;
-  DistanceSummary cloud_to_mesh;   //!< over at most a million evenly strided cloud points
-  double error_level = 0;          //!< the paper's e-bar
-  double cloud_spacing = 0;        //!< the cloud's median nearest-neighbour distance: no mesh is nearer on average
-  long inward_faces = -1;          //!< faces facing inward (-1: nothing to tell inward by)
+  DistanceSummary cloud_to_mesh;     //!< over at most a million evenly strided cloud points
+  double error_level = 0;            //!< the paper's e-bar
+  double cloud_spacing = 0;          //!< the cloud's median nearest-neighbour distance: no mesh is nearer on average
+  long inward_faces = -1;            //!< faces facing inward (-1: nothing to tell inward by)
   double inward_area_fraction = -1;  //!< their share of the mesh's area (-1: not measured)
-  std::string inward_reference;    //!< what "inward" is measured against: "scan normals" or "skeleton"
-  size_t folded_edges = 0;         //!< edges between faces folded over each other
+  std::string inward_reference;      //!< what "inward" is measured against: "scan normals" or "skeleton"
+  size_t folded_edges = 0;           //!< edges between faces folded over each other
   size_t intersecting_face_pairs = 0;
   //! Where faces cross: the midpoint of each pair's face centroids, for the
   //! first kMaxCrossingSites pairs (a user looks there first).
@@ -51,12 +51,12 @@ struct QualityMetrics {
   static constexpr size_t kMaxCrossingSites = 100;
   //! The worst places for the other defects, worst first, at most kMaxSites each.
   static constexpr size_t kMaxSites = 5;
-  std::vector<Eigen::Vector3d> fold_sites;         //!< midpoints of folded edges
-  std::vector<Eigen::Vector3d> worst_quad_sites;   //!< centroids of the quads of least scaled Jacobian (at most 0)
-  std::vector<Eigen::Vector3d> inward_sites;       //!< centroids of the largest faces facing inward
-  std::vector<Eigen::Vector3d> uncovered_sites;    //!< the cloud points farthest from the mesh
-  std::vector<Eigen::Vector3d> off_cloud_sites;    //!< the vertices farthest from the cloud
-  std::vector<Eigen::Vector3d> boundary_sites;     //!< the centres of the mesh's boundary loops (holes and open ends)
+  std::vector<Eigen::Vector3d> fold_sites;        //!< midpoints of folded edges
+  std::vector<Eigen::Vector3d> worst_quad_sites;  //!< centroids of the quads of least scaled Jacobian (at most 0)
+  std::vector<Eigen::Vector3d> inward_sites;      //!< centroids of the largest faces facing inward
+  std::vector<Eigen::Vector3d> uncovered_sites;   //!< the cloud points farthest from the mesh
+  std::vector<Eigen::Vector3d> off_cloud_sites;   //!< the vertices farthest from the cloud
+  std::vector<Eigen::Vector3d> boundary_sites;    //!< the centres of the mesh's boundary loops (holes and open ends)
   QuadShape quad_shape;
 };
 
@@ -80,7 +80,6 @@ double area_fraction(const QuadMesh& mesh, const std::vector<int>& faces);
 size_t inward_faces(const QuadMesh& mesh, const SkeletonGraph& skeleton);
 //! The same faces, by index.
 std::vector<int> inward_face_indices(const QuadMesh& mesh, const SkeletonGraph& skeleton);
-
 
 //! Generalized winding number of the mesh at p (quads split in two
 //! triangles): about 1 inside a closed, outward-oriented mesh, 0 outside,

@@ -56,7 +56,8 @@ std::vector<double> cloud_to_mesh_distances(const QuadMesh& mesh, const PointClo
     Eigen::Vector3d p = q.cast<double>();
     double best = INFINITY;
     for (size_t t : index.k_nearest(q, 8))
-      best = std::min(best, point_triangle_distance(p, triangles.corner(t, 0), triangles.corner(t, 1), triangles.corner(t, 2)));
+      best = std::min(
+          best, point_triangle_distance(p, triangles.corner(t, 0), triangles.corner(t, 1), triangles.corner(t, 2)));
     out[size_t(i)] = best;
   }
   return out;

@@ -29,7 +29,9 @@ VerdictCheck make_check(std::string name, std::string description, double value,
   check.value = value;
   check.threshold = threshold;
   check.bound = bound;
-  check.passed = bound == Bound::kAtMost ? value <= threshold : bound == Bound::kAtLeast ? value >= threshold : value > threshold;
+  check.passed = bound == Bound::kAtMost    ? value <= threshold
+                 : bound == Bound::kAtLeast ? value >= threshold
+                                            : value > threshold;
   return check;
 }
 
@@ -55,7 +57,8 @@ Verdict judge_mesh(const QualityMetrics& m, double median_radius, long open_ends
   checks.push_back(make_check("intersecting_face_pairs", "pairs of faces that cross each other",
                               double(m.intersecting_face_pairs), Bound::kAtMost, 0));
   checks.back().sites = m.crossing_sites;
-  checks.push_back(make_check("folded_edges", "edges whose two faces fold over each other (normals over 120 degrees apart)",
+  checks.push_back(make_check("folded_edges",
+                              "edges whose two faces fold over each other (normals over 120 degrees apart)",
                               double(m.folded_edges), Bound::kAtMost, 0));
   checks.back().sites = m.fold_sites;
   checks.push_back(make_check("min_scaled_jacobian",
@@ -63,7 +66,8 @@ Verdict judge_mesh(const QualityMetrics& m, double median_radius, long open_ends
                               m.quad_shape.min_scaled_jacobian, Bound::kAbove, t.min_scaled_jacobian));
   checks.back().sites = m.worst_quad_sites;
   if (open_ends >= 0) {
-    checks.push_back(make_check("open_ends", "boundary loops of the mesh beyond the open ends of the skeleton's tubes "
+    checks.push_back(make_check("open_ends",
+                                "boundary loops of the mesh beyond the open ends of the skeleton's tubes "
                                 "(a hole torn or an end closed that should not be)",
                                 std::fabs(double(m.statistics.boundary_loops) - double(open_ends)), Bound::kAtMost, 0));
     checks.back().sites = m.boundary_sites;  // a torn hole is one of them; a closed end is missing
@@ -72,7 +76,8 @@ Verdict judge_mesh(const QualityMetrics& m, double median_radius, long open_ends
   // fitted mesh it is a fraction of the point spacing (0.23 on the T, 0.15
   // on the knot); a mesh still far from the cloud is many spacings off.
   if (m.cloud_spacing > 0)
-    checks.push_back(make_check("error_level", "the paper's error level (mean distance to the cells' planes), in point spacings",
+    checks.push_back(make_check("error_level",
+                                "the paper's error level (mean distance to the cells' planes), in point spacings",
                                 m.error_level / m.cloud_spacing, Bound::kAtMost, t.error_level_per_spacing));
   if (m.inward_area_fraction >= 0 && m.statistics.faces > 0) {
     checks.push_back(make_check("inward_faces",
@@ -108,8 +113,13 @@ nlohmann::json to_json(const Verdict& verdict) {
   for (const auto& c : verdict.checks) {
     nlohmann::json sites = nlohmann::json::array();
     for (const auto& p : c.sites) sites.push_back({p.x(), p.y(), p.z()});
-    checks.push_back({{"name", c.name}, {"passed", c.passed}, {"value", c.value}, {"threshold", c.threshold},
-                      {"comparison", bound_words(c.bound)}, {"description", c.description}, {"sites", sites}});
+    checks.push_back({{"name", c.name},
+                      {"passed", c.passed},
+                      {"value", c.value},
+                      {"threshold", c.threshold},
+                      {"comparison", bound_words(c.bound)},
+                      {"description", c.description},
+                      {"sites", sites}});
   }
   return {{"passed", verdict.passed}, {"checks", checks}};
 }

@@ -32,11 +32,11 @@ struct Verdict {
 
 //! The bounds, as fractions of the median local radius where they are lengths.
 struct VerdictThresholds {
-  double inward_area_fraction = 0.005;        //!< area facing inward, of the mesh's area
-  double cloud_to_mesh_p95 = 0.05;            //!< uncovered cloud: 95 % of the points within this
-  double mesh_to_cloud_mean = 0.02;           //!< the mesh's mean distance to the cloud (plus the cloud's spacing)
-  double min_scaled_jacobian = 0.0;           //!< every quad's corners keep their orientation
-  double error_level_per_spacing = 1.0;       //!< the paper's error level, in point spacings
+  double inward_area_fraction = 0.005;   //!< area facing inward, of the mesh's area
+  double cloud_to_mesh_p95 = 0.05;       //!< uncovered cloud: 95 % of the points within this
+  double mesh_to_cloud_mean = 0.02;      //!< the mesh's mean distance to the cloud (plus the cloud's spacing)
+  double min_scaled_jacobian = 0.0;      //!< every quad's corners keep their orientation
+  double error_level_per_spacing = 1.0;  //!< the paper's error level, in point spacings
 };
 
 //! Judges a mesh by its metrics. `median_radius` scales the distances (0:

@@ -16,7 +16,6 @@
 
 namespace mcquad {
 
-
 //! Human-readable name of an OpenCL error code.
 std::string cl_error_name(cl_int code);
 

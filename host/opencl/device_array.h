@@ -32,7 +32,8 @@ class DeviceArray {
 
   //! Writes all of `host` (host.size() <= size()); blocking or not.
   void write(cl::CommandQueue& queue, const std::vector<T>& host, bool blocking = true) {
-    if (!host.empty()) queue.enqueueWriteBuffer(buffer_, blocking ? CL_TRUE : CL_FALSE, 0, bytes(host.size()), host.data());
+    if (!host.empty())
+      queue.enqueueWriteBuffer(buffer_, blocking ? CL_TRUE : CL_FALSE, 0, bytes(host.size()), host.data());
   }
   //! Reads the whole array back (blocking).
   std::vector<T> read(cl::CommandQueue& queue) const {

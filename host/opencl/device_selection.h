@@ -8,10 +8,10 @@
 namespace mcquad {
 
 struct DeviceInfo {
-  int index = 0;               //!< position in the global list (platforms in order)
+  int index = 0;  //!< position in the global list (platforms in order)
   std::string platform;
   std::string name;
-  std::string type;            //!< "GPU", "CPU", "accelerator", "other"
+  std::string type;  //!< "GPU", "CPU", "accelerator", "other"
   std::string version;
   unsigned compute_units = 0;
   unsigned long long global_memory = 0;

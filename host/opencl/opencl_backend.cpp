@@ -39,7 +39,8 @@ DeviceArray<T> OpenCLBackend::upload(const std::vector<T>& data, cl_mem_flags fl
   // A CPU device reads host memory anyway: read-only arrays are used in
   // place (the cells and mesh outlive the backend, as for the serial one)
   // instead of being copied, which saves a copy of the cloud.
-  if (device_.type == "CPU" && flags == CL_MEM_READ_ONLY && !data.empty()) return DeviceArray<T>::in_place(context_, data);
+  if (device_.type == "CPU" && flags == CL_MEM_READ_ONLY && !data.empty())
+    return DeviceArray<T>::in_place(context_, data);
   DeviceArray<T> array(context_, data.size(), flags);
   array.write(queue_, data, false);
   return array;
@@ -85,7 +86,8 @@ void OpenCLBackend::load(const CellTree& cells, const MeshArrays& mesh, const Sk
 
 void OpenCLBackend::run_normals() {
   set_kernel_args(normals_kernel_, positions_, faces_, vertex_face_offsets_, vertex_faces_, normals_, vertex_count_);
-  queue_.enqueueNDRangeKernel(normals_kernel_, cl::NullRange, global_range(vertex_count_, kGroupSize), cl::NDRange(kGroupSize));
+  queue_.enqueueNDRangeKernel(normals_kernel_, cl::NullRange, global_range(vertex_count_, kGroupSize),
+                              cl::NDRange(kGroupSize));
 }
 
 void OpenCLBackend::step(const device::mcq_step_params& params) {
@@ -93,14 +95,17 @@ void OpenCLBackend::step(const device::mcq_step_params& params) {
     if (params.relaxation > 0.0f) {
       set_kernel_args(relax_kernel_, positions_, normals_, faces_, vertex_face_offsets_, vertex_faces_, boundary_,
                       next_positions_, params.relaxation, vertex_count_);
-      queue_.enqueueNDRangeKernel(relax_kernel_, cl::NullRange, global_range(vertex_count_, kGroupSize), cl::NDRange(kGroupSize));
+      queue_.enqueueNDRangeKernel(relax_kernel_, cl::NullRange, global_range(vertex_count_, kGroupSize),
+                                  cl::NDRange(kGroupSize));
       swap(positions_, next_positions_);
       run_normals();
     }
     set_kernel_args(evolve_kernel_, positions_, normals_, initial_positions_, initial_normals_, next_positions_, faces_,
-                    vertex_face_offsets_, vertex_faces_, boundary_, node_bounds_, node_children_, cell_offsets_, points_,
-                    cell_bones_, vertex_bones_, vertex_scale_, visible_offsets_, visible_bones_, params, vertex_count_);
-    queue_.enqueueNDRangeKernel(evolve_kernel_, cl::NullRange, global_range(vertex_count_, kGroupSize), cl::NDRange(kGroupSize));
+                    vertex_face_offsets_, vertex_faces_, boundary_, node_bounds_, node_children_, cell_offsets_,
+                    points_, cell_bones_, vertex_bones_, vertex_scale_, visible_offsets_, visible_bones_, params,
+                    vertex_count_);
+    queue_.enqueueNDRangeKernel(evolve_kernel_, cl::NullRange, global_range(vertex_count_, kGroupSize),
+                                cl::NDRange(kGroupSize));
     swap(positions_, next_positions_);
     run_normals();
   } catch (const cl::Error& e) {
@@ -112,12 +117,16 @@ double OpenCLBackend::error_level() {
   try {
     set_kernel_args(errors_kernel_, positions_, node_bounds_, node_children_, cell_offsets_, points_, cell_centroids_,
                     cell_normals_, errors_, vertex_count_);
-    queue_.enqueueNDRangeKernel(errors_kernel_, cl::NullRange, global_range(vertex_count_, kGroupSize), cl::NDRange(kGroupSize));
-    set_kernel_args(reduce_kernel_, errors_, partial_sums_, cl::Local(reduce_group_size_ * sizeof(float)), vertex_count_);
+    queue_.enqueueNDRangeKernel(errors_kernel_, cl::NullRange, global_range(vertex_count_, kGroupSize),
+                                cl::NDRange(kGroupSize));
+    set_kernel_args(reduce_kernel_, errors_, partial_sums_, cl::Local(reduce_group_size_ * sizeof(float)),
+                    vertex_count_);
     queue_.enqueueNDRangeKernel(reduce_kernel_, cl::NullRange, cl::NDRange(reduce_groups_ * reduce_group_size_),
                                 cl::NDRange(reduce_group_size_));
-    set_kernel_args(reduce_kernel_, partial_sums_, total_, cl::Local(reduce_group_size_ * sizeof(float)), uint32_t(reduce_groups_));
-    queue_.enqueueNDRangeKernel(reduce_kernel_, cl::NullRange, cl::NDRange(reduce_group_size_), cl::NDRange(reduce_group_size_));
+    set_kernel_args(reduce_kernel_, partial_sums_, total_, cl::Local(reduce_group_size_ * sizeof(float)),
+                    uint32_t(reduce_groups_));
+    queue_.enqueueNDRangeKernel(reduce_kernel_, cl::NullRange, cl::NDRange(reduce_group_size_),
+                                cl::NDRange(reduce_group_size_));
     float total = total_.read(queue_)[0];
     return vertex_count_ ? double(total) / vertex_count_ : 0.0;
   } catch (const cl::Error& e) {
@@ -143,7 +152,8 @@ std::vector<float> OpenCLBackend::positions() {
 
 void OpenCLBackend::set_positions(const std::vector<float>& positions) {
   try {
-    if (positions.size() != positions_.size()) throw std::invalid_argument("set_positions: wrong number of coordinates");
+    if (positions.size() != positions_.size())
+      throw std::invalid_argument("set_positions: wrong number of coordinates");
     positions_.write(queue_, positions);
     run_normals();
   } catch (const cl::Error& e) {
@@ -161,19 +171,32 @@ std::vector<float> OpenCLBackend::normals() {
 
 std::string cl_error_name(cl_int code) {
   switch (code) {
-    case CL_DEVICE_NOT_FOUND: return "CL_DEVICE_NOT_FOUND";
-    case CL_DEVICE_NOT_AVAILABLE: return "CL_DEVICE_NOT_AVAILABLE";
-    case CL_MEM_OBJECT_ALLOCATION_FAILURE: return "CL_MEM_OBJECT_ALLOCATION_FAILURE: out of device memory";
-    case CL_OUT_OF_RESOURCES: return "CL_OUT_OF_RESOURCES";
-    case CL_OUT_OF_HOST_MEMORY: return "CL_OUT_OF_HOST_MEMORY";
-    case CL_BUILD_PROGRAM_FAILURE: return "CL_BUILD_PROGRAM_FAILURE";
-    case CL_INVALID_VALUE: return "CL_INVALID_VALUE";
-    case CL_INVALID_BUFFER_SIZE: return "CL_INVALID_BUFFER_SIZE: buffer larger than the device allows";
-    case CL_INVALID_KERNEL_ARGS: return "CL_INVALID_KERNEL_ARGS";
-    case CL_INVALID_WORK_GROUP_SIZE: return "CL_INVALID_WORK_GROUP_SIZE";
-    case CL_INVALID_ARG_SIZE: return "CL_INVALID_ARG_SIZE";
-    case -1001: return "CL_PLATFORM_NOT_FOUND_KHR";
-    default: return "OpenCL error " + std::to_string(code);
+    case CL_DEVICE_NOT_FOUND:
+      return "CL_DEVICE_NOT_FOUND";
+    case CL_DEVICE_NOT_AVAILABLE:
+      return "CL_DEVICE_NOT_AVAILABLE";
+    case CL_MEM_OBJECT_ALLOCATION_FAILURE:
+      return "CL_MEM_OBJECT_ALLOCATION_FAILURE: out of device memory";
+    case CL_OUT_OF_RESOURCES:
+      return "CL_OUT_OF_RESOURCES";
+    case CL_OUT_OF_HOST_MEMORY:
+      return "CL_OUT_OF_HOST_MEMORY";
+    case CL_BUILD_PROGRAM_FAILURE:
+      return "CL_BUILD_PROGRAM_FAILURE";
+    case CL_INVALID_VALUE:
+      return "CL_INVALID_VALUE";
+    case CL_INVALID_BUFFER_SIZE:
+      return "CL_INVALID_BUFFER_SIZE: buffer larger than the device allows";
+    case CL_INVALID_KERNEL_ARGS:
+      return "CL_INVALID_KERNEL_ARGS";
+    case CL_INVALID_WORK_GROUP_SIZE:
+      return "CL_INVALID_WORK_GROUP_SIZE";
+    case CL_INVALID_ARG_SIZE:
+      return "CL_INVALID_ARG_SIZE";
+    case -1001:
+      return "CL_PLATFORM_NOT_FOUND_KHR";
+    default:
+      return "OpenCL error " + std::to_string(code);
   }
 }
 

@@ -8,7 +8,6 @@
 #include "core/errors.h"
 #include "embedded_kernels.h"  // generated from kernels/ (cmake/embed_sources.cmake)
 
-
 namespace mcquad {
 
 std::string shared_kernel_source() {
@@ -39,8 +38,8 @@ cl::Program build_program(const cl::Context& context, const cl::Device& device, 
 }
 
 cl::Program mcquad_program(const cl::Context& context, const cl::Device& device, const std::string& options) {
-  static const std::string source = mcquad_program_source();
-  return build_program(context, device, source, options);
+  static const std::string kSource = mcquad_program_source();
+  return build_program(context, device, kSource, options);
 }
 
 }  // namespace mcquad

@@ -33,13 +33,17 @@ IterationCallback snapshot_writer(const std::string& directory, const QuadMesh& 
 }
 
 //! Runs the evolution on the prepared setup and leaves its positions in `mesh`.
-FitReport::Evolution evolve_mesh(EvolutionSetup& setup, const FitOptions& options, const EvolutionParameters& parameters,
-                                 QuadMesh& mesh, StageTimer& timer) {
+FitReport::Evolution evolve_mesh(EvolutionSetup& setup, const FitOptions& options,
+                                 const EvolutionParameters& parameters, QuadMesh& mesh, StageTimer& timer) {
   auto backend = timer.run("backend_setup", [&] { return make_backend(options.backend, options.device); });
-  timer.run("upload", [&] { backend->load(setup.cells, setup.arrays, setup.regions); return 0; });
+  timer.run("upload", [&] {
+    backend->load(setup.cells, setup.arrays, setup.regions);
+    return 0;
+  });
   IterationCallback snapshot;
   if (!options.snapshots_directory.empty()) snapshot = snapshot_writer(options.snapshots_directory, mesh);
-  EvolutionResult evolution = timer.run("evolution", [&] { return evolve(*backend, setup.arrays, parameters, snapshot); });
+  EvolutionResult evolution =
+      timer.run("evolution", [&] { return evolve(*backend, setup.arrays, parameters, snapshot); });
   set_positions(mesh, evolution.positions);
   return {backend->name(), backend->device_name(), evolution.initial_error_level, std::move(evolution.iterations),
           evolution.stop_reason};
@@ -63,15 +67,22 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
   const std::string& skeleton_path = input.skeleton_name;
   // The scan's normals judge the mesh's orientation at the end; a sample of
   // them is enough, and the rest need not be sorted and carried along.
-  OrientedSample oriented = cloud.oriented.empty() ? oriented_sample(cloud, kOrientedSample) : std::move(cloud.oriented);
+  OrientedSample oriented =
+      cloud.oriented.empty() ? oriented_sample(cloud, kOrientedSample) : std::move(cloud.oriented);
   cloud.oriented = OrientedSample();
   std::vector<Eigen::Vector3f>().swap(cloud.normals);
-  timer.run("sort_points", [&] { sort_spatially(cloud); return 0; });
+  timer.run("sort_points", [&] {
+    sort_spatially(cloud);
+    return 0;
+  });
   SkeletonGraph graph = build_skeleton_graph(input.skeleton, skeleton_path);
 
   // The initial mesh alone (mcquad init) needs no cells.
-  SetupScope scope = options.evolve ? SetupScope::kEvolution : options.measure ? SetupScope::kCells : SetupScope::kInitialMesh;
-  EvolutionSetup setup = prepare_evolution(graph, cloud, options.initial, options.leaf_size, skeleton_path, scope, &timer);
+  SetupScope scope = options.evolve    ? SetupScope::kEvolution
+                     : options.measure ? SetupScope::kCells
+                                       : SetupScope::kInitialMesh;
+  EvolutionSetup setup =
+      prepare_evolution(graph, cloud, options.initial, options.leaf_size, skeleton_path, scope, &timer);
   if (!options.construction_skeleton.empty())
     write_skeleton_obj(options.construction_skeleton,
                        SkeletonData{setup.initial.skeleton.graph.positions, setup.initial.skeleton.graph.edges});
@@ -83,15 +94,18 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
 
   EvolutionParameters parameters = options.evolution;
   if (parameters.epsilon <= 0) parameters.epsilon = automatic_epsilon(setup.median_radius);
-  report.inputs = {points_path, skeleton_path, cloud.size(), graph.node_count(), graph.edges.size(), graph.component_count};
-  report.parameters = {options, parameters.epsilon, setup.median_radius, cell_leaf_size(options.leaf_size, cloud.size())};
+  report.inputs = {points_path,        skeleton_path,      cloud.size(),
+                   graph.node_count(), graph.edges.size(), graph.component_count};
+  report.parameters = {options, parameters.epsilon, setup.median_radius,
+                       cell_leaf_size(options.leaf_size, cloud.size())};
   report.initial_mesh = {setup.initial.open_ends, setup.initial.refinement_levels, mesh_statistics(result.mesh)};
   if (setup.cells.cell_count() > 0)
     report.cells = FitReport::Cells{setup.cells.cell_count(), setup.cells.node_count(), setup.cells.depth,
                                     double(setup.cells.byte_size()) / 1e6};
   if (options.evolve) report.evolution = evolve_mesh(setup, options, parameters, result.mesh, timer);
   if (options.measure) {
-    report.metrics = timer.run("metrics", [&] { return measure_quality(result.mesh, cloud, setup.cells, &graph, &oriented); });
+    report.metrics =
+        timer.run("metrics", [&] { return measure_quality(result.mesh, cloud, setup.cells, &graph, &oriented); });
     report.verdict = judge_mesh(*report.metrics, setup.median_radius, setup.initial.open_ends);
   }
   if (!options.surfaces.cad_path.empty() || !options.surfaces.control_nets_path.empty()) {

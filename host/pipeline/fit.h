@@ -25,8 +25,8 @@ struct FitInput {
 
 struct FitResult {
   QuadMesh mesh;
-  QuadMesh initial_mesh;           //!< when FitOptions::keep_initial_mesh
-  FitReport report;                //!< its verdict set when measured (mcquad fit; not mcquad init)
+  QuadMesh initial_mesh;                           //!< when FitOptions::keep_initial_mesh
+  FitReport report;                                //!< its verdict set when measured (mcquad fit; not mcquad init)
   std::optional<SkeletonData> extracted_skeleton;  //!< when none was given
 };
 

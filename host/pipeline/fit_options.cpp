@@ -13,10 +13,18 @@ constexpr double kDegrees = 180.0 / M_PI;
 
 //! Every ranged option of fit, in user units.
 constexpr OptionRange kOptionRanges[] = {
-    {"start_fraction", 0.05, 0.95}, {"resolution", 0, HUGE_VAL},   {"min_junction_angle", 0, 120},
-    {"relaxation", 0, 1},           {"held_back_relaxation", 0, 1}, {"hit_band", 0, 1},
-    {"tolerance", 0, HUGE_VAL},     {"cones", 1, 64},               {"generators", 1, 64},
-    {"alpha_max", 0, 89},           {"samples", 1, 1024},           {"epsilon", 0, HUGE_VAL},
+    {"start_fraction", 0.05, 0.95},
+    {"resolution", 0, HUGE_VAL},
+    {"min_junction_angle", 0, 120},
+    {"relaxation", 0, 1},
+    {"held_back_relaxation", 0, 1},
+    {"hit_band", 0, 1},
+    {"tolerance", 0, HUGE_VAL},
+    {"cones", 1, 64},
+    {"generators", 1, 64},
+    {"alpha_max", 0, 89},
+    {"samples", 1, 1024},
+    {"epsilon", 0, HUGE_VAL},
     {"leaf_size", 0, double(size_t(1) << 20)},
 };
 
@@ -60,37 +68,38 @@ const OptionRange& fit_option_range(const std::string& name) {
 }
 
 const OptionWords<EndMode>& end_mode_words() {
-  static const OptionWords<EndMode> words{{"auto", EndMode::kAuto}, {"open", EndMode::kOpen}, {"capped", EndMode::kCapped}};
-  return words;
+  static const OptionWords<EndMode> kWords{
+      {"auto", EndMode::kAuto}, {"open", EndMode::kOpen}, {"capped", EndMode::kCapped}};
+  return kWords;
 }
 
 const OptionWords<BackendKind>& backend_words() {
-  static const OptionWords<BackendKind> words{
+  static const OptionWords<BackendKind> kWords{
       {"auto", BackendKind::kAuto}, {"serial", BackendKind::kSerial}, {"opencl", BackendKind::kOpenCL}};
-  return words;
+  return kWords;
 }
 
 const OptionWords<EvolutionParameters::Mode>& evolution_mode_words() {
   using Mode = EvolutionParameters::Mode;
-  static const OptionWords<Mode> words{{"robust", Mode::kRobust}, {"paper", Mode::kPaper}};
-  return words;
+  static const OptionWords<Mode> kWords{{"robust", Mode::kRobust}, {"paper", Mode::kPaper}};
+  return kWords;
 }
 
 const OptionWords<ConstructionStage>& construction_stage_words() {
-  static const OptionWords<ConstructionStage> words{{"blocks", ConstructionStage::kBlocks},
-                                                    {"extruded", ConstructionStage::kExtruded},
-                                                    {"refined", ConstructionStage::kRefined}};
-  return words;
+  static const OptionWords<ConstructionStage> kWords{{"blocks", ConstructionStage::kBlocks},
+                                                     {"extruded", ConstructionStage::kExtruded},
+                                                     {"refined", ConstructionStage::kRefined}};
+  return kWords;
 }
 
 const OptionWords<bool>& on_off_words() {
-  static const OptionWords<bool> words{{"on", true}, {"off", false}};
-  return words;
+  static const OptionWords<bool> kWords{{"on", true}, {"off", false}};
+  return kWords;
 }
 
 const OptionWords<bool>& projection_words() {
-  static const OptionWords<bool> words{{"mean", true}, {"min", false}};
-  return words;
+  static const OptionWords<bool> kWords{{"mean", true}, {"min", false}};
+  return kWords;
 }
 
 EndMode end_mode_from_name(const std::string& name, const std::string& option) {

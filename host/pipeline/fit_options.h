@@ -14,15 +14,15 @@ namespace mcquad {
 struct FitOptions {
   EvolutionParameters evolution;
   InitialMeshOptions initial;
-  size_t leaf_size = 0;              //!< at most this many points per cell; 0: automatic (cell_leaf_size)
+  size_t leaf_size = 0;  //!< at most this many points per cell; 0: automatic (cell_leaf_size)
   BackendKind backend = BackendKind::kAuto;
-  std::string device;                //!< OpenCL device by index or name
-  std::string snapshots_directory;   //!< write the mesh after every iteration here
-  std::string construction_skeleton; //!< write the skeleton the mesh was built on here (OBJ)
-  bool evolve = true;                //!< false: stop after the initial mesh (mcquad init)
-  bool measure = true;               //!< compute quality metrics for the report
-  bool keep_initial_mesh = false;    //!< return the initial mesh too (for the HTML report)
-  SurfaceOutputs surfaces;           //!< B-spline surfaces to write (none by default)
+  std::string device;                 //!< OpenCL device by index or name
+  std::string snapshots_directory;    //!< write the mesh after every iteration here
+  std::string construction_skeleton;  //!< write the skeleton the mesh was built on here (OBJ)
+  bool evolve = true;                 //!< false: stop after the initial mesh (mcquad init)
+  bool measure = true;                //!< compute quality metrics for the report
+  bool keep_initial_mesh = false;     //!< return the initial mesh too (for the HTML report)
+  SurfaceOutputs surfaces;            //!< B-spline surfaces to write (none by default)
 };
 
 //! Options out of range or contradicting each other, refused before any

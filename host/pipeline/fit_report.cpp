@@ -40,9 +40,13 @@ nlohmann::json to_json(const FitReport::Parameters& p) {
 nlohmann::json to_json(const FitReport::Evolution& e) {
   nlohmann::json iterations = nlohmann::json::array();
   for (const auto& r : e.iterations)
-    iterations.push_back({{"iteration", r.iteration}, {"error_level", r.error_level}, {"seconds", r.seconds},
-                          {"step_seconds", r.step_seconds}, {"error_seconds", r.error_seconds},
-                          {"guard_seconds", r.guard_seconds}, {"held_back_vertices", r.held_back_vertices}});
+    iterations.push_back({{"iteration", r.iteration},
+                          {"error_level", r.error_level},
+                          {"seconds", r.seconds},
+                          {"step_seconds", r.step_seconds},
+                          {"error_seconds", r.error_seconds},
+                          {"guard_seconds", r.guard_seconds},
+                          {"held_back_vertices", r.held_back_vertices}});
   return {{"initial_error_level", e.initial_error_level},
           {"iterations", iterations},
           {"stop_reason", e.stop_reason},
@@ -54,8 +58,11 @@ nlohmann::json to_json(const FitReport::Evolution& e) {
 nlohmann::json to_json(const FitReport& r) {
   nlohmann::json report;
   const auto& in = r.inputs;
-  report["inputs"] = {{"points", in.points}, {"skeleton", in.skeleton}, {"point_count", in.point_count},
-                      {"skeleton_nodes", in.skeleton_nodes}, {"skeleton_bones", in.skeleton_bones},
+  report["inputs"] = {{"points", in.points},
+                      {"skeleton", in.skeleton},
+                      {"point_count", in.point_count},
+                      {"skeleton_nodes", in.skeleton_nodes},
+                      {"skeleton_bones", in.skeleton_bones},
                       {"skeleton_components", in.skeleton_components}};
   report["parameters"] = to_json(r.parameters);
   if (r.skeleton_extraction) report["skeleton_extraction"] = to_json(*r.skeleton_extraction);
@@ -63,7 +70,9 @@ nlohmann::json to_json(const FitReport& r) {
                             {"refinement_levels", r.initial_mesh.refinement_levels},
                             {"statistics", to_json(r.initial_mesh.statistics)}};
   if (r.cells)
-    report["cells"] = {{"cells", r.cells->cells}, {"tree_nodes", r.cells->tree_nodes}, {"depth", r.cells->depth},
+    report["cells"] = {{"cells", r.cells->cells},
+                       {"tree_nodes", r.cells->tree_nodes},
+                       {"depth", r.cells->depth},
                        {"megabytes", r.cells->megabytes}};
   if (r.evolution) {
     report["backend"] = {{"name", r.evolution->backend}, {"device", r.evolution->device}};

@@ -44,19 +44,21 @@ struct FitReport {
     double initial_error_level = 0;
     std::vector<IterationRecord> iterations;
     std::string stop_reason;
-    double final_error_level() const { return iterations.empty() ? initial_error_level : iterations.back().error_level; }
+    double final_error_level() const {
+      return iterations.empty() ? initial_error_level : iterations.back().error_level;
+    }
   };
 
   Inputs inputs;
   Parameters parameters;
   std::optional<SkeletonReport> skeleton_extraction;  //!< when no skeleton was given
   InitialMeshSummary initial_mesh;
-  std::optional<Cells> cells;                         //!< when built (fit, or init measuring)
-  std::optional<Evolution> evolution;                 //!< mcquad fit, not mcquad init
-  std::optional<QualityMetrics> metrics;              //!< when measured
-  std::optional<Verdict> verdict;                     //!< when measured
-  std::optional<SurfaceReport> surfaces;              //!< when B-spline surfaces were asked for
-  std::map<std::string, StageTimer::Record> stages;   //!< every stage run, by name
+  std::optional<Cells> cells;                        //!< when built (fit, or init measuring)
+  std::optional<Evolution> evolution;                //!< mcquad fit, not mcquad init
+  std::optional<QualityMetrics> metrics;             //!< when measured
+  std::optional<Verdict> verdict;                    //!< when measured
+  std::optional<SurfaceReport> surfaces;             //!< when B-spline surfaces were asked for
+  std::map<std::string, StageTimer::Record> stages;  //!< every stage run, by name
   double peak_resident_megabytes = 0;
   std::string output_mesh;  //!< the mesh file's absolute path, once written (empty: not written)
 };

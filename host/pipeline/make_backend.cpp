@@ -22,7 +22,8 @@ std::unique_ptr<EvolutionBackend> make_backend(BackendKind kind, const std::stri
     return std::make_unique<SerialBackend>();
   }
 #else
-  if (kind == BackendKind::kOpenCL || !device.empty()) throw DeviceError("this build of mcquad has no OpenCL backend (MCQUAD_WITH_OPENCL=OFF)");
+  if (kind == BackendKind::kOpenCL || !device.empty())
+    throw DeviceError("this build of mcquad has no OpenCL backend (MCQUAD_WITH_OPENCL=OFF)");
   return std::make_unique<SerialBackend>();
 #endif
 }

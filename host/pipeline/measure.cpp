@@ -14,7 +14,8 @@ MeshMeasurement measure_mesh(const QuadMesh& mesh, const PointCloud& cloud, cons
   QualityMetrics quality;
   if (skeleton) {
     SkeletonGraph graph = build_skeleton_graph(*skeleton, skeleton_name);
-    EvolutionSetup setup = prepare_evolution(graph, cloud, InitialMeshOptions(), leaf_size, skeleton_name, SetupScope::kCells);
+    EvolutionSetup setup =
+        prepare_evolution(graph, cloud, InitialMeshOptions(), leaf_size, skeleton_name, SetupScope::kCells);
     quality = measure_quality(mesh, cloud, setup.cells, &graph, &oriented);
     result.verdict = judge_mesh(quality, setup.median_radius, setup.initial.open_ends);
   } else {

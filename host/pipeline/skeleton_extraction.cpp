@@ -36,7 +36,9 @@ nlohmann::json to_json(const SkeletonReport& r) {
     NodeKind kind = r.kinds[v];
     nodes.push_back({{"position", {p.x(), p.y(), p.z()}},
                      {"radius", r.radii[v]},
-                     {"kind", kind == NodeKind::kEnd ? "end" : kind == NodeKind::kJunction ? "junction" : "regular"},
+                     {"kind", kind == NodeKind::kEnd        ? "end"
+                              : kind == NodeKind::kJunction ? "junction"
+                                                            : "regular"},
                      {"degree", r.degrees[v]}});
   }
   return {{"points", r.points},

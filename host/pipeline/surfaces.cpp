@@ -67,7 +67,8 @@ SurfaceReport export_surfaces(const QuadMesh& mesh, const PointCloud* cloud, con
     // the sewing tolerance only has to absorb that.
     CadModel cad(model.surfaces, 1e-7 * diagonal(mesh));
     cad.write(outputs.cad_path, outputs.units);
-    report.cad_file = CadFileReport{outputs.cad_path, outputs.units, cad.face_count(), read_cad_file(outputs.cad_path), 0.0};
+    report.cad_file =
+        CadFileReport{outputs.cad_path, outputs.units, cad.face_count(), read_cad_file(outputs.cad_path), 0.0};
     report.cad_file->seconds = seconds_since(start);
   }
   if (!outputs.control_nets_path.empty()) write_mesh(outputs.control_nets_path, control_net_mesh(model.surfaces));
@@ -76,10 +77,11 @@ SurfaceReport export_surfaces(const QuadMesh& mesh, const PointCloud* cloud, con
   report.checks = check_surfaces(mesh, layout, model.surfaces, cloud, outputs.tangent_tolerance_degrees);
   const SurfaceChecks& checks = report.checks;
   if (off_cloud_check && cloud && !cloud->empty()) {
-    *off_cloud_check = make_check("surfaces_off_cloud",
-                                  "faces whose B-spline surface is farther from the cloud than the quad mesh (more than "
-                                  "1.1 x the mesh's 95th percentile or the face's own distance, plus one point spacing)",
-                                  double(checks.faces_off_cloud), VerdictCheck::Bound::kAtMost, 0);
+    *off_cloud_check =
+        make_check("surfaces_off_cloud",
+                   "faces whose B-spline surface is farther from the cloud than the quad mesh (more than "
+                   "1.1 x the mesh's 95th percentile or the face's own distance, plus one point spacing)",
+                   double(checks.faces_off_cloud), VerdictCheck::Bound::kAtMost, 0);
     for (const OffCloudSurfaceSite& site : checks.off_cloud_sites) off_cloud_check->sites.push_back(site.position);
   }
   report.checks_seconds = seconds_since(start);

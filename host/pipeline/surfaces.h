@@ -13,10 +13,10 @@
 namespace mcquad {
 
 struct SurfaceOutputs {
-  std::string cad_path;                   //!< .step/.stp or .iges/.igs; empty: none
-  std::string control_nets_path;          //!< the poles as a quad mesh (.obj, ...); empty: none
-  double tangent_tolerance_degrees = 1.0; //!< seams within this normal gap count as tangent-continuous
-  std::string units = "mm";               //!< the length unit the CAD file declares (coordinates unchanged)
+  std::string cad_path;                    //!< .step/.stp or .iges/.igs; empty: none
+  std::string control_nets_path;           //!< the poles as a quad mesh (.obj, ...); empty: none
+  double tangent_tolerance_degrees = 1.0;  //!< seams within this normal gap count as tangent-continuous
+  std::string units = "mm";                //!< the length unit the CAD file declares (coordinates unchanged)
 };
 
 //! The CAD file as written and as OpenCASCADE reads it back.

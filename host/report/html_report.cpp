@@ -76,7 +76,8 @@ std::vector<double> vertex_distances(const QuadMesh& mesh, const PointCloud& clo
 //! Scalars of a JSON tree as "a.b.c": value rows for the page's tables.
 void flatten(const nlohmann::json& j, const std::string& prefix, nlohmann::json& out) {
   if (j.is_object()) {
-    for (const auto& [key, value] : j.items()) flatten(value, prefix.empty() ? key : prefix + "." + key, out);
+    for (const auto& [key, value] : j.items())
+      flatten(value, prefix.empty() ? key : std::string(prefix).append(".").append(key), out);
   } else if (!j.is_array()) {
     out[prefix] = j;
   }
@@ -129,15 +130,16 @@ nlohmann::json page_data(const HtmlReportInput& in) {
   data["distance_scale_meaning"] = "5 % of the median local radius; distance to the plane of the 8 nearest points";
   data["verdict"] = report.contains("verdict") ? report["verdict"] : nlohmann::json();
   data["failed_sites"] = failed_sites(report);
-  data["initial_error_level"] = report.contains("evolution") ? report["evolution"]["initial_error_level"] : nlohmann::json();
+  data["initial_error_level"] =
+      report.contains("evolution") ? report["evolution"]["initial_error_level"] : nlohmann::json();
   nlohmann::json levels = nlohmann::json::array();
   if (report.contains("evolution"))
     for (const auto& it : report["evolution"]["iterations"]) levels.push_back(it["error_level"]);
   data["error_levels"] = levels;
   nlohmann::json metrics = table(report, "metrics");
   metrics.erase("crossing_sites");
-  data["tables"] = {{"metrics", metrics}, {"parameters", table(report, "parameters")},
-                    {"timings", table(report, "timings_seconds")}};
+  data["tables"] = {
+      {"metrics", metrics}, {"parameters", table(report, "parameters")}, {"timings", table(report, "timings_seconds")}};
   return data;
 }
 
@@ -153,7 +155,8 @@ const char* const kThreeJsFiles[] = {"three.min.js", "examples/js/controls/Orbit
 std::string read_three_js() {
   check_three_js();
   std::string sources;
-  for (const char* file : kThreeJsFiles) sources += read_file((std::filesystem::path(three_js_directory()) / file).string()) + "\n";
+  for (const char* file : kThreeJsFiles)
+    sources += read_file((std::filesystem::path(three_js_directory()) / file).string()) + "\n";
   return sources;
 }
 
@@ -169,7 +172,8 @@ InitialMeshOptions initial_options_from(const nlohmann::json& p) {
   o.resolution = p.value("resolution", o.resolution);
   o.target_vertices = p.value("target_vertices", o.target_vertices);
   o.ends = end_mode_from_name(p.value("ends", std::string("auto")), "ends");
-  if (p.contains("min_junction_angle_degrees")) o.min_junction_angle = p["min_junction_angle_degrees"].get<double>() * M_PI / 180.0;
+  if (p.contains("min_junction_angle_degrees"))
+    o.min_junction_angle = p["min_junction_angle_degrees"].get<double>() * M_PI / 180.0;
   return o;
 }
 

@@ -15,7 +15,8 @@ struct EditableSkeleton {
 
   int edge_between(int a, int b) const {
     for (size_t e = 0; e < edges.size(); ++e)
-      if (!removed_edge[e] && ((edges[e][0] == a && edges[e][1] == b) || (edges[e][0] == b && edges[e][1] == a))) return int(e);
+      if (!removed_edge[e] && ((edges[e][0] == a && edges[e][1] == b) || (edges[e][0] == b && edges[e][1] == a)))
+        return int(e);
     return -1;
   }
   void add_edge(int a, int b, double r) {
@@ -39,7 +40,8 @@ std::vector<int> chain_from(const SkeletonGraph& graph, int start, int next) {
 
 double chain_length(const SkeletonGraph& graph, const std::vector<int>& chain) {
   double length = 0;
-  for (size_t k = 0; k + 1 < chain.size(); ++k) length += (graph.positions[chain[k + 1]] - graph.positions[chain[k]]).norm();
+  for (size_t k = 0; k + 1 < chain.size(); ++k)
+    length += (graph.positions[chain[k + 1]] - graph.positions[chain[k]]).norm();
   return length;
 }
 
@@ -53,7 +55,7 @@ int cut_chain(EditableSkeleton& skeleton, const SkeletonGraph& graph, const std:
     int edge = skeleton.edge_between(chain[k], chain[k + 1]);
     skeleton.removed_edge[edge] = true;
     if (s <= span) {
-      skeleton.nodes.push_back(a + (b - a) * (s / span));
+      skeleton.nodes.emplace_back(a + (b - a) * (s / span));
       int cut = int(skeleton.nodes.size()) - 1;
       skeleton.add_edge(cut, chain[k + 1], skeleton.radius[edge]);
       return cut;
@@ -124,7 +126,7 @@ EditableSkeleton& merge_chains(EditableSkeleton& skeleton, const SkeletonGraph& 
   int previous = chain_i.front();
   for (size_t k = 1; k <= segments; ++k) {
     double fraction = double(k) / double(segments), middle = (double(k) - 0.5) / double(segments);
-    skeleton.nodes.push_back(0.5 * (point_along(graph, chain_i, fraction) + point_along(graph, chain_j, fraction)));
+    skeleton.nodes.emplace_back(0.5 * (point_along(graph, chain_i, fraction) + point_along(graph, chain_j, fraction)));
     int node = int(skeleton.nodes.size()) - 1;
     double separation = (point_along(graph, chain_i, middle) - point_along(graph, chain_j, middle)).norm();
     skeleton.add_edge(previous, node, radius + 0.5 * separation);
@@ -195,7 +197,8 @@ TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssign
     if (along > chain_length(g, chain_i) - r || along > chain_length(g, chain_j) - r ||
         chain_i.back() == chain_j.back()) {
       if (tubes_never_part(g, chain_i, chain_j, ri, rj)) {
-        result.graph = rebuild(merge_chains(skeleton, g, chain_i, chain_j, std::max(ri, rj)), result.bone_radius, source);
+        result.graph =
+            rebuild(merge_chains(skeleton, g, chain_i, chain_j, std::max(ri, rj)), result.bone_radius, source);
         kept.clear();  // node indices changed
         continue;
       }
@@ -204,7 +207,7 @@ TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssign
     }
     Eigen::Vector3d di = (g.positions[best_i] - g.positions[best_node]).normalized();
     Eigen::Vector3d dj = (g.positions[best_j] - g.positions[best_node]).normalized();
-    skeleton.nodes.push_back(g.positions[best_node] + (di + dj).normalized() * std::max(crotch - r, 0.25 * crotch));
+    skeleton.nodes.emplace_back(g.positions[best_node] + (di + dj).normalized() * std::max(crotch - r, 0.25 * crotch));
     int junction = int(skeleton.nodes.size()) - 1;
     created.push_back(skeleton.nodes.back());
     int pi = cut_chain(skeleton, g, chain_i, along);

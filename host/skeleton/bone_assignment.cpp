@@ -99,7 +99,8 @@ BoneAssignment assign_points_to_bones(const SkeletonGraph& graph, const PointClo
     interior_count[size_t(result.bone[i])] += interior(i);
   }
   std::vector<std::vector<float>> distances(bone_count);
-  for (size_t b = 0; b < bone_count; ++b) distances[b].reserve(interior_count[b] >= 8 ? interior_count[b] : all_count[b]);
+  for (size_t b = 0; b < bone_count; ++b)
+    distances[b].reserve(interior_count[b] >= 8 ? interior_count[b] : all_count[b]);
   for (size_t i = 0; i < n; ++i) {
     size_t b = size_t(result.bone[i]);
     if (interior_count[b] < 8 || interior(i)) distances[b].push_back(result.distance[i]);

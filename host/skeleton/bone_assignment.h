@@ -13,9 +13,9 @@ namespace mcquad {
 //! projection parameter along the bone and the distance to it; and from
 //! that, robust local radii of the cloud around bones and nodes.
 struct BoneAssignment {
-  std::vector<int> bone;         //!< per point: index into graph.edges
-  std::vector<float> parameter;  //!< per point: projection onto the bone in [0, 1]
-  std::vector<float> distance;   //!< per point: distance to the bone
+  std::vector<int> bone;            //!< per point: index into graph.edges
+  std::vector<float> parameter;     //!< per point: projection onto the bone in [0, 1]
+  std::vector<float> distance;      //!< per point: distance to the bone
   std::vector<double> bone_radius;  //!< median distance of the bone's points
   std::vector<double> node_radius;  //!< per skeleton node, see assign_points_to_bones
 

@@ -67,7 +67,7 @@ struct Chain {
 struct Extraction {
   const VoxelGraph& voxels;
   const LevelSetGraph& levels;
-  const PointIndex<double>& surface;  // over surface_points
+  const PointIndex<double>& surface;                   // over surface_points
   const std::vector<Eigen::Vector3d>& surface_points;  // the kept voxels' centroids
   double band_width;
   WorkGraph work;
@@ -80,7 +80,8 @@ struct Extraction {
 
 double chain_length(const Extraction& x, const std::vector<int>& nodes) {
   double length = 0;
-  for (size_t k = 1; k < nodes.size(); ++k) length += (x.position[size_t(nodes[k])] - x.position[size_t(nodes[k - 1])]).norm();
+  for (size_t k = 1; k < nodes.size(); ++k)
+    length += (x.position[size_t(nodes[k])] - x.position[size_t(nodes[k - 1])]).norm();
   return length;
 }
 
@@ -457,7 +458,8 @@ void place_junctions(Extraction& x, std::vector<Chain>& chains) {
     std::vector<Line> lines = limb_axes(limbs_of({a, b}, {c}), r);
     Eigen::Vector3d middle = 0.5 * (x.position[size_t(a)] + x.position[size_t(b)]);
     Eigen::Vector3d meet = lines.size() >= 2 ? nearest_to_lines(lines, middle) : middle;
-    bool one_point = lines.size() >= 2 && farthest_axis(lines, meet) < 0.5 * r && (meet - middle).norm() < 0.5 * length + r;
+    bool one_point =
+        lines.size() >= 2 && farthest_axis(lines, meet) < 0.5 * r && (meet - middle).norm() < 0.5 * length + r;
     if (length < 0.5 * r || one_point) regions.join(size_t(a), size_t(b));
   }
   std::map<int, std::set<int>> clusters;
@@ -492,10 +494,13 @@ void place_junctions(Extraction& x, std::vector<Chain>& chains) {
     for (const auto& limb : limbs) {
       std::vector<int>& nodes = chains[limb.chain].nodes;
       Line axis;
-      bool has_axis = fit_axis(x, limb.nodes, start, r, 3 * r, axis) || fit_axis(x, limb.nodes, start, 0.5 * r, 5 * r, axis);
+      bool has_axis =
+          fit_axis(x, limb.nodes, start, r, 3 * r, axis) || fit_axis(x, limb.nodes, start, 0.5 * r, 5 * r, axis);
       Eigen::Vector3d out = has_axis ? axis.direction : (x.position[size_t(limb.nodes.back())] - centre).normalized();
       size_t inner = 1;
-      auto inside = [&](const Eigen::Vector3d& p) { return (p - centre).dot(out) < 0.75 * r || (p - centre).norm() < 1.5 * r; };
+      auto inside = [&](const Eigen::Vector3d& p) {
+        return (p - centre).dot(out) < 0.75 * r || (p - centre).norm() < 1.5 * r;
+      };
       while (inner + 1 < limb.nodes.size() && inside(x.position[size_t(limb.nodes[inner])])) ++inner;
       // limb.nodes[1 .. inner) are inside; erase them from the chain's matching end.
       size_t count = std::min(inner - 1, nodes.size() - 2);  // the other end may have been trimmed already
@@ -523,7 +528,8 @@ void place_end(Extraction& x, std::vector<int>& nodes) {  // nodes start at the 
   }
   double r = median(radii);
   Line axis;
-  if (r <= 0 || !(fit_axis(x, nodes, tip_ring, r, 3 * r, axis) || fit_axis(x, nodes, tip_ring, 0.3 * r, 4 * r, axis))) return;
+  if (r <= 0 || !(fit_axis(x, nodes, tip_ring, r, 3 * r, axis) || fit_axis(x, nodes, tip_ring, 0.3 * r, 4 * r, axis)))
+    return;
   Eigen::Vector3d out = -axis.direction;
   // The tip: the farthest voxel along the axis among the rings near the end.
   std::vector<Eigen::Vector3d> near_tip;
@@ -545,7 +551,8 @@ void place_end(Extraction& x, std::vector<int>& nodes) {  // nodes start at the 
   double end = open ? tip : tip - r;
   // Drop the rings past (or within half a radius of) the new end.
   size_t keep_from = 1;
-  while (keep_from + 1 < nodes.size() && (x.position[size_t(nodes[keep_from])] - axis.point).dot(out) > end - 0.5 * r) ++keep_from;
+  while (keep_from + 1 < nodes.size() && (x.position[size_t(nodes[keep_from])] - axis.point).dot(out) > end - 0.5 * r)
+    ++keep_from;
   nodes.erase(nodes.begin() + 1, nodes.begin() + long(keep_from));
   x.position[size_t(nodes.front())] = axis.point + end * out;
 }
@@ -555,6 +562,7 @@ void place_end(Extraction& x, std::vector<int>& nodes) {  // nodes start at the 
 //! needs two, a second chain between the same two nodes one).
 std::vector<int> thin_chain(const Extraction& x, const std::vector<int>& nodes, size_t fewest_inner) {
   std::vector<double> radii;
+  radii.reserve(nodes.size());
   for (int v : nodes) radii.push_back(x.node(v).radius);
   double tolerance = 0.1 * median(radii);
   std::vector<bool> keep(nodes.size(), false);
@@ -639,8 +647,8 @@ bool is_a_blob(const Extraction& x, const ExtractedSkeleton& extracted) {
 ExtractedSkeleton extract_skeleton(const PointCloud& cloud, const std::string& source,
                                    const SkeletonExtractionOptions& options) {
   if (cloud.size() < kFewestPoints)
-    throw InputError(source + ": " + std::to_string(cloud.size()) + " points are too few to extract a skeleton from (at least " +
-                     std::to_string(kFewestPoints) + ")");
+    throw InputError(source + ": " + std::to_string(cloud.size()) +
+                     " points are too few to extract a skeleton from (at least " + std::to_string(kFewestPoints) + ")");
   ExtractedSkeleton result;
   size_t target = options.target_voxels ? options.target_voxels : std::min(kMostVoxels, cloud.size() / 4);
   // Fine enough for the target count, coarse enough that the sparsest part
@@ -689,8 +697,9 @@ ExtractedSkeleton extract_skeleton(const PointCloud& cloud, const std::string& s
   double band_width = options.band_voxels * voxels.voxel_size;
   LevelSetGraph levels = build_level_set_graph(voxels, distance, band_width);
   if (arc_fraction(levels) > 0.5)
-    throw UnsupportedError(source + ": the cloud is a sheet, not a body of tubes (most bands of distance along it are open "
-                                    "arcs): it has no curve skeleton; give a skeleton file");
+    throw UnsupportedError(source +
+                           ": the cloud is a sheet, not a body of tubes (most bands of distance along it are open "
+                           "arcs): it has no curve skeleton; give a skeleton file");
 
   PointIndex<double> surface(surface_points);
   Extraction x{voxels, levels, surface, surface_points, band_width, WorkGraph(levels), {}};
@@ -713,7 +722,8 @@ ExtractedSkeleton extract_skeleton(const PointCloud& cloud, const std::string& s
   // Emit: key nodes once, thinned chains between them.
   std::map<std::array<int, 2>, int> pair_count;
   for (const auto& chain : chains)
-    ++pair_count[{std::min(chain.nodes.front(), chain.nodes.back()), std::max(chain.nodes.front(), chain.nodes.back())}];
+    ++pair_count[{std::min(chain.nodes.front(), chain.nodes.back()),
+                  std::max(chain.nodes.front(), chain.nodes.back())}];
   std::map<int, int> output_index;
   auto emit = [&](int v) {
     auto [it, inserted] = output_index.try_emplace(v, int(result.skeleton.nodes.size()));
@@ -724,7 +734,8 @@ ExtractedSkeleton extract_skeleton(const PointCloud& cloud, const std::string& s
     int a = chain.nodes.front(), b = chain.nodes.back();
     size_t fewest = chain.closed() ? 2 : pair_count[{std::min(a, b), std::max(a, b)}] > 1 ? 1 : 0;
     std::vector<int> thinned = thin_chain(x, chain.nodes, fewest);
-    if (thinned.size() < 2 || (thinned.size() == 2 && (x.position[size_t(a)] - x.position[size_t(b)]).norm() == 0)) continue;
+    if (thinned.size() < 2 || (thinned.size() == 2 && (x.position[size_t(a)] - x.position[size_t(b)]).norm() == 0))
+      continue;
     for (size_t k = 1; k < thinned.size(); ++k) {
       // Inner nodes are fresh per chain; key nodes are shared.
       int from = k == 1 ? emit(thinned[0]) : int(result.skeleton.nodes.size()) - 1;
@@ -740,8 +751,9 @@ ExtractedSkeleton extract_skeleton(const PointCloud& cloud, const std::string& s
   }
   for (const auto& p : result.skeleton.nodes) result.radii.push_back(x.inscribed_radius(p));
   if (result.skeleton.edges.empty() || is_a_blob(x, result))
-    throw UnsupportedError(source + ": the cloud is a single blob with no limbs (no part of it reaches out of its widest "
-                                    "inscribed ball): it has no curve skeleton; give a skeleton file");
+    throw UnsupportedError(source +
+                           ": the cloud is a single blob with no limbs (no part of it reaches out of its widest "
+                           "inscribed ball): it has no curve skeleton; give a skeleton file");
   return result;
 }
 

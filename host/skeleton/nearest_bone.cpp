@@ -21,7 +21,7 @@ std::vector<Eigen::Vector3d> bone_samples(const SkeletonGraph& graph, std::vecto
     const auto& c = graph.positions[graph.edges[b][1]];
     int steps = std::max(2, int(std::ceil((c - a).norm() / spacing)));
     for (int k = 0; k <= steps; ++k) {
-      samples.push_back(a + (c - a) * (double(k) / steps));
+      samples.emplace_back(a + (c - a) * (double(k) / steps));
       sample_bone.push_back(int(b));
     }
   }
@@ -31,8 +31,7 @@ std::vector<Eigen::Vector3d> bone_samples(const SkeletonGraph& graph, std::vecto
 }  // namespace
 
 NearestBone::NearestBone(const SkeletonGraph& graph)
-    : graph_(graph), sample_bone_(), samples_(bone_samples(graph, sample_bone_)), node_bones_(graph.node_bones()),
-      index_(samples_) {}
+    : graph_(graph), samples_(bone_samples(graph, sample_bone_)), node_bones_(graph.node_bones()), index_(samples_) {}
 
 NearestBone::Hit NearestBone::find(const Eigen::Vector3d& p) const {
   auto distance_to = [&](int bone, double* t) {

@@ -108,12 +108,13 @@ SkeletonGraph build_skeleton_graph(const SkeletonData& data, const std::string& 
   if (data.nodes.empty() || data.edges.empty()) throw InputError(source + ": the skeleton has no bones");
   // The readers guarantee these; skeletons made in memory may not.
   for (size_t i = 0; i < data.nodes.size(); ++i)
-    if (!data.nodes[i].allFinite()) throw InputError(source + ": node " + std::to_string(i + 1) + " has a NaN or infinite coordinate");
+    if (!data.nodes[i].allFinite())
+      throw InputError(source + ": node " + std::to_string(i + 1) + " has a NaN or infinite coordinate");
   for (size_t i = 0; i < data.edges.size(); ++i)
     for (int end : data.edges[i])
       if (end < 0 || size_t(end) >= data.nodes.size())
-        throw InputError(source + ": bone " + std::to_string(i + 1) + " names node " + std::to_string(end + 1) + " of " +
-                         std::to_string(data.nodes.size()));
+        throw InputError(source + ": bone " + std::to_string(i + 1) + " names node " + std::to_string(end + 1) +
+                         " of " + std::to_string(data.nodes.size()));
   Eigen::Vector3d lo = data.nodes[0], hi = data.nodes[0];
   for (const auto& p : data.nodes) {
     lo = lo.cwiseMin(p);
@@ -142,8 +143,9 @@ SkeletonGraph build_skeleton_graph(const SkeletonData& data, const std::string& 
   std::vector<bool> touched(graph.positions.size(), false);
   for (const auto& e : data.edges) {
     int a = new_index[e[0]], b = new_index[e[1]];
-    if (a == b) throw InputError(source + ": bone " + std::to_string(e[0] + 1) + "-" + std::to_string(e[1] + 1) + " at " +
-                                 describe_node(data, e[0]) + " is a self-loop (its ends coincide)");
+    if (a == b)
+      throw InputError(source + ": bone " + std::to_string(e[0] + 1) + "-" + std::to_string(e[1] + 1) + " at " +
+                       describe_node(data, e[0]) + " is a self-loop (its ends coincide)");
     touched[a] = touched[b] = true;
     if (!seen.insert({std::min(a, b), std::max(a, b)}).second) {
       ++duplicates;
@@ -153,7 +155,8 @@ SkeletonGraph build_skeleton_graph(const SkeletonData& data, const std::string& 
   }
   if (duplicates > 0) warn(source + ": merged " + std::to_string(duplicates) + " duplicate bone(s)");
   for (size_t i = 0; i < data.nodes.size(); ++i) {
-    if (!touched[new_index[i]]) throw InputError(source + ": " + describe_node(data, int(i)) + " is isolated (no bone uses it)");
+    if (!touched[new_index[i]])
+      throw InputError(source + ": " + describe_node(data, int(i)) + " is isolated (no bone uses it)");
   }
 
   graph.neighbours.assign(graph.positions.size(), {});

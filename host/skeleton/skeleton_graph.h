@@ -43,7 +43,6 @@ struct SkeletonGraph {
 //! bounding box diagonal) are merged and duplicate bones dropped, each with a
 //! warning; a bone from a node to itself and a node with no bone are
 //! InputErrors naming the node.
-SkeletonGraph build_skeleton_graph(const SkeletonData& data, const std::string& source,
-                                   double merge_tolerance = -1.0);
+SkeletonGraph build_skeleton_graph(const SkeletonData& data, const std::string& source, double merge_tolerance = -1.0);
 
 }  // namespace mcquad

@@ -84,7 +84,7 @@ VoxelGraph build_voxel_graph(const std::vector<Eigen::Vector3f>& points, double 
     auto [it, inserted] = index.try_emplace(key, uint32_t(voxel_keys.size()));
     if (inserted) {
       voxel_keys.push_back(key);
-      graph.centroids.push_back(Eigen::Vector3d::Zero());
+      graph.centroids.emplace_back(Eigen::Vector3d::Zero());
       counts.push_back(0);
     }
     graph.centroids[it->second] += p.cast<double>();

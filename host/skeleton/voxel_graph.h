@@ -17,7 +17,7 @@ struct VoxelGraph {
   std::vector<Eigen::Vector3d> centroids;  //!< per voxel, the mean of its points
   std::vector<uint32_t> offsets;           //!< CSR: neighbours of v are [offsets[v], offsets[v+1])
   std::vector<uint32_t> neighbours;
-  std::vector<float> lengths;              //!< distance between the two centroids, per entry
+  std::vector<float> lengths;  //!< distance between the two centroids, per entry
 
   size_t size() const { return centroids.size(); }
 };

@@ -46,8 +46,8 @@ struct CadUnit {
   const char* iges;  //!< and for IGES
 };
 
-const CadUnit kUnits[] = {{"mm", "MM", "MM"}, {"cm", "CM", "CM"}, {"m", "M", "M"}, {"um", "UM", "UM"},
-                          {"in", "INCH", "IN"}, {"ft", "FT", "FT"}};
+const CadUnit kUnits[] = {{"mm", "MM", "MM"}, {"cm", "CM", "CM"},   {"m", "M", "M"},
+                          {"um", "UM", "UM"}, {"in", "INCH", "IN"}, {"ft", "FT", "FT"}};
 
 const CadUnit& unit_named(const std::string& name) {
   for (const auto& unit : kUnits)
@@ -153,7 +153,7 @@ struct CadModel::Impl {
 
 namespace {
 
-TopoDS_Face make_face(const Handle(Geom_BSplineSurface)& surface, double u0, double u1, double v0, double v1,
+TopoDS_Face make_face(const Handle(Geom_BSplineSurface) & surface, double u0, double u1, double v0, double v1,
                       double tolerance) {
   BRepBuilderAPI_MakeFace face(surface, u0, u1, v0, v1, tolerance);
   if (!face.IsDone()) throw UnsupportedError("surfaces: OpenCASCADE could not make a face of a B-spline surface");
@@ -173,7 +173,7 @@ size_t free_edges_of(const std::vector<TopoDS_Face>& faces, double tolerance) {
 //! same curve, which OpenCASCADE neither makes a seam nor sews within one
 //! face. Cut in two halves across that direction, the halves sew to each
 //! other along both cuts.
-std::vector<TopoDS_Face> faces_of(const Handle(Geom_BSplineSurface)& surface, double tolerance) {
+std::vector<TopoDS_Face> faces_of(const Handle(Geom_BSplineSurface) & surface, double tolerance) {
   double u0, u1, v0, v1;
   surface->Bounds(u0, u1, v0, v1);
   std::vector<TopoDS_Face> best = {make_face(surface, u0, u1, v0, v1, tolerance)};
@@ -239,7 +239,8 @@ void CadModel::write(const std::string& path, const std::string& unit_name) cons
         IGESControl_Controller::Init();
         set_cascade_unit(unit, false);
         IGESControl_Writer writer(unit.iges, 1);  // mode 1: faces as B-rep entities
-        if (!writer.AddShape(impl_->shape)) throw OutputError(path + ": OpenCASCADE could not convert the shape to IGES");
+        if (!writer.AddShape(impl_->shape))
+          throw OutputError(path + ": OpenCASCADE could not convert the shape to IGES");
         writer.ComputeModel();
         if (!writer.Write(temporary.c_str())) throw OutputError(path + ": OpenCASCADE could not write the IGES file");
       }
@@ -256,13 +257,15 @@ CadFileContents read_cad_file(const std::string& path) {
     bool step = format_of(path) == CadFormat::kStep;
     if (step) {
       STEPControl_Reader reader;
-      if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) throw InputError(path + ": OpenCASCADE cannot read this STEP file");
+      if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
+        throw InputError(path + ": OpenCASCADE cannot read this STEP file");
       reader.TransferRoots();
       shape = reader.OneShape();
     } else {
       IGESControl_Controller::Init();
       IGESControl_Reader reader;
-      if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) throw InputError(path + ": OpenCASCADE cannot read this IGES file");
+      if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
+        throw InputError(path + ": OpenCASCADE cannot read this IGES file");
       reader.TransferRoots();
       shape = reader.OneShape();
     }

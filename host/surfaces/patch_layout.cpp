@@ -194,7 +194,8 @@ bool build_grid(const QuadMesh& mesh, const std::vector<int>& faces, const Unrol
   std::vector<char> cell_used(faces.size(), 0);
   for (size_t f = 0; f < faces.size(); ++f) {
     Cell low_corner = corners[f][0].cwiseMin(corners[f][1]).cwiseMin(corners[f][2]).cwiseMin(corners[f][3]);
-    if (low_corner.x() < 0 || low_corner.y() < 0 || low_corner.x() >= faces_u || low_corner.y() >= faces_v) return false;
+    if (low_corner.x() < 0 || low_corner.y() < 0 || low_corner.x() >= faces_u || low_corner.y() >= faces_v)
+      return false;
     char& used = cell_used[size_t(low_corner.y()) * size_t(faces_u) + size_t(low_corner.x())];
     if (used) return false;
     used = 1;
@@ -229,7 +230,6 @@ std::array<Eigen::Vector2d, 4> in_face_order(const QuadMesh& mesh, QuadMesh::Fac
 
 namespace {
 
-
 //! Unit normal of the mesh at v: the sum of its faces' vector areas.
 Eigen::Vector3d vertex_normal(const QuadMesh& mesh, QuadMesh::VertexHandle v) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
@@ -256,7 +256,7 @@ Eigen::Vector3d grid_tangent(const QuadMesh& mesh, QuadMesh::VertexHandle p, Qua
     size_t k = 0;
     for (auto out = h;;) {
       if (out == h) k = ring.size();
-      ring.push_back(point_of(mesh, mesh.to_vertex_handle(out)) - point_of(mesh, p));
+      ring.emplace_back(point_of(mesh, mesh.to_vertex_handle(out)) - point_of(mesh, p));
       out = mesh.cw_rotated_halfedge_handle(out);
       if (out == h) break;
     }
@@ -315,7 +315,8 @@ PatchLayout decompose_into_patches(const QuadMesh& mesh) {
       const Corners unit = {Cell(0, 0), Cell(1, 0), Cell(1, 1), Cell(0, 1)};
       single.vertices.resize(4);
       for (int k = 0; k < 4; ++k)
-        single.vertices[size_t(unit[size_t(k)].y() * 2 + unit[size_t(k)].x())] = mesh.from_vertex_handle(hs[size_t(k)]).idx();
+        single.vertices[size_t(unit[size_t(k)].y() * 2 + unit[size_t(k)].x())] =
+            mesh.from_vertex_handle(hs[size_t(k)]).idx();
       layout.face_region[size_t(face)] = int(layout.regions.size());
       layout.face_corner_parameters[size_t(face)] = in_face_order(mesh, f, unit);
       layout.regions.push_back(std::move(single));

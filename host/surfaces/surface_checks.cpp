@@ -62,7 +62,6 @@ double angle_degrees(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / M_PI;
 }
 
-
 //! Per vertex, the largest dihedral angle of the quad mesh at its edges.
 std::vector<double> mesh_creases(const QuadMesh& mesh) {
   std::vector<Eigen::Vector3d> normals(mesh.n_faces());
@@ -71,8 +70,8 @@ std::vector<double> mesh_creases(const QuadMesh& mesh) {
   for (auto e : mesh.edges()) {
     if (mesh.is_boundary(e)) continue;
     auto h = mesh.halfedge_handle(e, 0);
-    double angle = angle_degrees(normals[size_t(mesh.face_handle(h).idx())],
-                                 normals[size_t(mesh.opposite_face_handle(h).idx())]);
+    double angle =
+        angle_degrees(normals[size_t(mesh.face_handle(h).idx())], normals[size_t(mesh.opposite_face_handle(h).idx())]);
     for (auto v : {mesh.from_vertex_handle(h), mesh.to_vertex_handle(h)})
       crease[size_t(v.idx())] = std::max(crease[size_t(v.idx())], angle);
   }
@@ -81,9 +80,9 @@ std::vector<double> mesh_creases(const QuadMesh& mesh) {
 
 //! The faces whose surface is farther from the cloud than the quad mesh (see
 //! SurfaceChecks::off_cloud_tolerance), from the 9 samples per face.
-void find_off_cloud_faces(const QuadMesh& mesh, const std::vector<int>& distance, const std::vector<Eigen::Vector3d>& samples,
-                          const std::vector<double>& to_cloud, const std::vector<double>& flat_to_cloud,
-                          double spacing, SurfaceChecks& checks) {
+void find_off_cloud_faces(const QuadMesh& mesh, const std::vector<int>& distance,
+                          const std::vector<Eigen::Vector3d>& samples, const std::vector<double>& to_cloud,
+                          const std::vector<double>& flat_to_cloud, double spacing, SurfaceChecks& checks) {
   // Distances to the nearest point jitter by about a point spacing between
   // two samples a spacing apart: that much more is noise, not a bulge. Where
   // the mesh itself is far from the cloud (not converged there), a curved
@@ -119,8 +118,8 @@ void find_off_cloud_faces(const QuadMesh& mesh, const std::vector<int>& distance
 }
 
 void measure_distances(const QuadMesh& mesh, const std::vector<int>& distance, const PatchLayout& layout,
-                       const std::vector<SurfaceEvaluator>& evaluators,
-                       const PointCloud* cloud, SurfaceChecks& checks) {
+                       const std::vector<SurfaceEvaluator>& evaluators, const PointCloud* cloud,
+                       SurfaceChecks& checks) {
   static constexpr double kAt[3] = {1.0 / 6.0, 0.5, 5.0 / 6.0};
   std::vector<Eigen::Vector3d> samples(mesh.n_faces() * 9), flat_samples(mesh.n_faces() * 9);
 #pragma omp parallel for schedule(static)
@@ -140,13 +139,14 @@ void measure_distances(const QuadMesh& mesh, const std::vector<int>& distance, c
         double s = kAt[a], t = kAt[b];
         size_t index = size_t(fi) * 9 + size_t(a * 3 + b);
         samples[index] = surface.point(low.x() + s, low.y() + t);
-        flat_samples[index] = (1 - s) * (1 - t) * at[0][0] + s * (1 - t) * at[1][0] + s * t * at[1][1] + (1 - s) * t * at[0][1];
+        flat_samples[index] =
+            (1 - s) * (1 - t) * at[0][0] + s * (1 - t) * at[1][0] + s * t * at[1][1] + (1 - s) * t * at[0][1];
       }
   }
   checks.samples = samples.size();
   PointCloud sample_cloud;
   sample_cloud.points.reserve(samples.size());
-  for (const auto& p : samples) sample_cloud.points.push_back(p.cast<float>());
+  for (const auto& p : samples) sample_cloud.points.emplace_back(p.cast<float>());
   checks.to_mesh = summarize_distances(cloud_to_mesh_distances(mesh, sample_cloud));
   if (!cloud || cloud->empty()) return;
   PointIndex<float> index(cloud->points);
@@ -182,7 +182,8 @@ void measure_seams(const QuadMesh& mesh, const std::vector<int>& distance, const
       double t = k / 4.0;
       Eigen::Vector2d uf = (1 - t) * af + t * bf, ug = (1 - t) * ag + t * bg;
       const SurfaceEvaluator &sf = evaluators[size_t(rf)], &sg = evaluators[size_t(rg)];
-      checks.max_position_gap = std::max(checks.max_position_gap, (sf.point(uf.x(), uf.y()) - sg.point(ug.x(), ug.y())).norm());
+      checks.max_position_gap =
+          std::max(checks.max_position_gap, (sf.point(uf.x(), uf.y()) - sg.point(ug.x(), ug.y())).norm());
       edge_gap = std::max(edge_gap, angle_degrees(sf.normal(uf.x(), uf.y()), sg.normal(ug.x(), ug.y())));
     }
     checks.max_normal_gap_degrees = std::max(checks.max_normal_gap_degrees, edge_gap);
@@ -190,7 +191,8 @@ void measure_seams(const QuadMesh& mesh, const std::vector<int>& distance, const
     bool smooth_mesh = std::max(crease[size_t(a.idx())], crease[size_t(b.idx())]) <= checks.smooth_mesh_degrees;
     bool far = edge_distance < 0 || edge_distance >= checks.far_edges;
     if (far && smooth_mesh)
-      checks.max_normal_gap_away_from_irregular_degrees = std::max(checks.max_normal_gap_away_from_irregular_degrees, edge_gap);
+      checks.max_normal_gap_away_from_irregular_degrees =
+          std::max(checks.max_normal_gap_away_from_irregular_degrees, edge_gap);
     if (edge_gap <= checks.tangent_tolerance_degrees) {
       checks.seam_edges_within_tolerance += 1;
       continue;
@@ -199,22 +201,24 @@ void measure_seams(const QuadMesh& mesh, const std::vector<int>& distance, const
       checks.farthest_gap_from_irregular = std::max(checks.farthest_gap_from_irregular, edge_distance);
     else
       checks.gaps_at_mesh_creases += 1;
-    int site = distance[size_t(a.idx())] <= distance[size_t(b.idx())] ? nearest[size_t(a.idx())] : nearest[size_t(b.idx())];
+    int site =
+        distance[size_t(a.idx())] <= distance[size_t(b.idx())] ? nearest[size_t(a.idx())] : nearest[size_t(b.idx())];
     if (site >= 0) worst_at_site[site] = std::max(worst_at_site[site], edge_gap);
   }
   for (const auto& [vertex, gap] : worst_at_site) {
     QuadMesh::VertexHandle v(vertex);
     checks.sites.push_back({vertex, int(mesh.valence(v)), point_of(mesh, v), gap, crease[size_t(vertex)]});
   }
-  std::sort(checks.sites.begin(), checks.sites.end(),
-            [](const NormalGapSite& x, const NormalGapSite& y) { return x.max_normal_gap_degrees > y.max_normal_gap_degrees; });
+  std::sort(checks.sites.begin(), checks.sites.end(), [](const NormalGapSite& x, const NormalGapSite& y) {
+    return x.max_normal_gap_degrees > y.max_normal_gap_degrees;
+  });
 }
-
 
 }  // namespace
 
-SurfaceChecks check_surfaces(const QuadMesh& mesh, const PatchLayout& layout, const std::vector<BSplineSurface>& surfaces,
-                             const PointCloud* cloud, double tangent_tolerance_degrees) {
+SurfaceChecks check_surfaces(const QuadMesh& mesh, const PatchLayout& layout,
+                             const std::vector<BSplineSurface>& surfaces, const PointCloud* cloud,
+                             double tangent_tolerance_degrees) {
   SurfaceChecks checks;
   checks.tangent_tolerance_degrees = tangent_tolerance_degrees;
   checks.surfaces = surfaces.size();
@@ -265,7 +269,8 @@ nlohmann::json to_json(const SurfaceChecks& c) {
           {"seam_edges_tangent_continuous", c.seam_edges_within_tolerance},
           {"max_normal_gap_degrees", c.max_normal_gap_degrees},
           {"smooth_mesh_degrees", c.smooth_mesh_degrees},
-          {"max_normal_gap_degrees_smooth_mesh_two_or_more_edges_from_irregular", c.max_normal_gap_away_from_irregular_degrees},
+          {"max_normal_gap_degrees_smooth_mesh_two_or_more_edges_from_irregular",
+           c.max_normal_gap_away_from_irregular_degrees},
           {"gaps_above_tolerance_on_smooth_mesh_within_edges_of_irregular", c.farthest_gap_from_irregular},
           {"gaps_above_tolerance_at_mesh_creases", c.gaps_at_mesh_creases},
           {"position_continuous_only_at", sites},

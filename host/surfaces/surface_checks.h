@@ -26,8 +26,8 @@ struct NormalGapSite {
 struct OffCloudSurfaceSite {
   int face = -1;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  //!< the face's sample farthest from the cloud
-  double surface_distance = 0;  //!< that sample's distance to the nearest cloud point
-  double allowed_distance = 0;  //!< the tolerance at this face
+  double surface_distance = 0;                         //!< that sample's distance to the nearest cloud point
+  double allowed_distance = 0;                         //!< the tolerance at this face
   int edges_from_irregular = -1;
 };
 
@@ -36,9 +36,9 @@ struct OffCloudSurfaceSite {
 //! every seam edge (5 points, evaluated from both sides).
 struct SurfaceChecks {
   size_t surfaces = 0, periodic_surfaces = 0, samples = 0;
-  DistanceSummary to_cloud;        //!< samples to their nearest cloud point (no cloud: zeros)
-  DistanceSummary mesh_to_cloud;   //!< the quad mesh's own (face samples), for comparison
-  DistanceSummary to_mesh;         //!< samples to the quad mesh
+  DistanceSummary to_cloud;       //!< samples to their nearest cloud point (no cloud: zeros)
+  DistanceSummary mesh_to_cloud;  //!< the quad mesh's own (face samples), for comparison
+  DistanceSummary to_mesh;        //!< samples to the quad mesh
   //! Every face's surface must stay as near the cloud as the quad mesh: its
   //! farthest sample within 1.1 x the larger of the mesh's own p95 distance
   //! and the face's own farthest flat sample, plus the cloud's point spacing
@@ -50,7 +50,7 @@ struct SurfaceChecks {
   std::vector<OffCloudSurfaceSite> off_cloud_sites;
   static constexpr size_t kMaxOffCloudSites = 20;
   size_t seam_edges = 0;
-  double max_position_gap = 0;     //!< across all seams
+  double max_position_gap = 0;  //!< across all seams
   double tangent_tolerance_degrees = 0;
   size_t seam_edges_within_tolerance = 0;  //!< tangent planes agree within the tolerance
   double max_normal_gap_degrees = 0;

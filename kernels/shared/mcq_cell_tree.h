@@ -65,8 +65,7 @@ MCQ_FN void mcq_node_corners(const MCQ_GLOBAL float* node_bounds, int node, mcq_
 
 /* Entry parameter of the half-line origin + t*dir (t >= 0) into node's box,
  * or a negative value when it misses. */
-MCQ_FN float mcq_ray_box_entry(const MCQ_GLOBAL float* node_bounds, int node, mcq_vec3 origin,
-                               mcq_vec3 inv_dir) {
+MCQ_FN float mcq_ray_box_entry(const MCQ_GLOBAL float* node_bounds, int node, mcq_vec3 origin, mcq_vec3 inv_dir) {
   mcq_vec3 lo, hi;
   mcq_node_corners(node_bounds, node, origin, &lo, &hi);
   float t_enter, t_exit;
@@ -76,9 +75,7 @@ MCQ_FN float mcq_ray_box_entry(const MCQ_GLOBAL float* node_bounds, int node, mc
 
 /* A direction component of exactly zero would make 0 * inf = NaN in the slab
  * test; a tiny signed stand-in keeps the test exact for practical purposes. */
-MCQ_FN float mcq_safe_inverse(float d) {
-  return 1.0f / (MCQ_FABS(d) > 1e-20f ? d : MCQ_COPYSIGN(1e-20f, d));
-}
+MCQ_FN float mcq_safe_inverse(float d) { return 1.0f / (MCQ_FABS(d) > 1e-20f ? d : MCQ_COPYSIGN(1e-20f, d)); }
 
 /* The componentwise mcq_safe_inverse of a ray direction, as the slab tests take it. */
 MCQ_FN mcq_vec3 mcq_inverse_direction(mcq_vec3 dir) {
@@ -103,8 +100,7 @@ MCQ_FN int mcq_hit_is_better(float t, int cell, float best_t, int best_cell) {
  * through as if absent; the entry distance goes to *entry. The
  * reference for the packet traversal; tests compare the two. */
 MCQ_FN int mcq_first_cell_hit(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
-                              mcq_cell_filter filter, mcq_vec3 origin, mcq_vec3 dir, float reach,
-                              float* entry) {
+                              mcq_cell_filter filter, mcq_vec3 origin, mcq_vec3 dir, float reach, float* entry) {
   mcq_vec3 inv_dir = mcq_inverse_direction(dir);
   int stack_node[MCQ_STACK_SIZE];
   float stack_t[MCQ_STACK_SIZE];
@@ -229,9 +225,8 @@ MCQ_FN int mcq_cells_in_band(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOB
 
 /* Ray `dir`'s band (as mcq_cells_in_band) among the candidate leaves that
  * mcq_first_cell_hits gathered for its packet. */
-MCQ_FN int mcq_band_of_ray(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
-                           const int* leaves, int candidates, mcq_vec3 origin, mcq_vec3 dir, float center, float band,
-                           int* cells) {
+MCQ_FN int mcq_band_of_ray(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children, const int* leaves,
+                           int candidates, mcq_vec3 origin, mcq_vec3 dir, float center, float band, int* cells) {
   mcq_vec3 inv_dir = mcq_inverse_direction(dir);
   float gaps[MCQ_BAND_CELLS];
   int found = 0;
@@ -272,8 +267,8 @@ MCQ_FN int mcq_packet_wants_box(mcq_vec3 lo, mcq_vec3 hi, const float* inv_x, co
 /* Compacts the packet's band candidates to those some ray's current window
  * still wants (mcq_box_wanted); returns how many remain. */
 MCQ_FN int mcq_drop_unwanted_leaves(const MCQ_GLOBAL float* node_bounds, mcq_vec3 origin, const float* inv_x,
-                                    const float* inv_y, const float* inv_z, const float* entries, int count,
-                                    float band, int* leaves, int found) {
+                                    const float* inv_y, const float* inv_z, const float* entries, int count, float band,
+                                    int* leaves, int found) {
   int kept = 0;
   for (int k = 0; k < found; ++k) {
     mcq_vec3 lo, hi;
@@ -344,14 +339,13 @@ MCQ_FN void mcq_first_cell_hits(const MCQ_GLOBAL float* node_bounds, const MCQ_G
       }
       if (band > 0.0f && wanted) {
         if (found == MCQ_BAND_CANDIDATES)
-          found = mcq_drop_unwanted_leaves(node_bounds, origin, inv_x, inv_y, inv_z, entries, count, band, leaves,
-                                           found);
+          found =
+              mcq_drop_unwanted_leaves(node_bounds, origin, inv_x, inv_y, inv_z, entries, count, band, leaves, found);
         if (found < MCQ_BAND_CANDIDATES) leaves[found++] = node;
       }
       continue;
     }
-    if (!mcq_packet_wants_box(lo, hi, inv_x, inv_y, inv_z, entries, count, band) || top + 2 > MCQ_STACK_SIZE)
-      continue;
+    if (!mcq_packet_wants_box(lo, hi, inv_x, inv_y, inv_z, entries, count, band) || top + 2 > MCQ_STACK_SIZE) continue;
     /* Visit first the child the packet's mean direction reaches first. */
     int right = node_children[2 * node + 1];
     const MCQ_GLOBAL float* bl = node_bounds + 6 * left;
@@ -376,8 +370,8 @@ MCQ_FN float mcq_box_distance_squared(const MCQ_GLOBAL float* node_bounds, int n
 /* The cell holding the cloud point nearest to q (ties to the lower point
  * index, i.e. the lower cell); the squared distance goes to *distance2. */
 MCQ_FN int mcq_nearest_point_cell(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
-                                  const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points,
-                                  mcq_vec3 q, float* distance2) {
+                                  const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points, mcq_vec3 q,
+                                  float* distance2) {
   int stack_node[MCQ_STACK_SIZE];
   float stack_d[MCQ_STACK_SIZE];
   int top = 1;

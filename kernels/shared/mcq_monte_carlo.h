@@ -6,21 +6,22 @@
 /* Parameters of one step; only 4-byte fields so the layout is identical on
  * the host and on any OpenCL device (passed by value as a kernel argument). */
 typedef struct {
-  mcq_uint cones;       /* c */
-  mcq_uint generators;  /* r, rays per cone */
-  mcq_uint samples;     /* m, random points per hit cell */
+  mcq_uint cones;      /* c */
+  mcq_uint generators; /* r, rays per cone */
+  mcq_uint samples;    /* m, random points per hit cell */
   mcq_uint seed;
   mcq_uint iteration;
-  float alpha_max;      /* radians */
-  float epsilon;        /* feasibility bound |d| < epsilon */
-  float reach;          /* rays look for cells up to this distance */
-  mcq_uint fold_guard;  /* 1: shorten steps that would fold a face (robust mode), 0: the paper's step */
-  float relaxation;     /* weight of the tangential relaxation before the step; 0: none (the paper) */
+  float alpha_max;          /* radians */
+  float epsilon;            /* feasibility bound |d| < epsilon */
+  float reach;              /* rays look for cells up to this distance */
+  mcq_uint fold_guard;      /* 1: shorten steps that would fold a face (robust mode), 0: the paper's step */
+  float relaxation;         /* weight of the tangential relaxation before the step; 0: none (the paper) */
   mcq_uint mean_projection; /* 1: a cell's d is the mean of its samples' projections; 0: their minimum (the paper) */
-  mcq_uint fill_holes;  /* 1: a vertex no ray finds a feasible cell for takes its neighbours' offset */
-  mcq_uint own_cells;   /* 1: a vertex sees only the cells of the bones near its own (skeleton regions) */
-  mcq_uint local_epsilon; /* 1: epsilon and reach scale with the vertex's local radius (skeleton regions) */
-  float band;           /* > 0: a ray's d averages every cell within this distance of its first hit; 0: the first cell (the paper) */
+  mcq_uint fill_holes;      /* 1: a vertex no ray finds a feasible cell for takes its neighbours' offset */
+  mcq_uint own_cells;       /* 1: a vertex sees only the cells of the bones near its own (skeleton regions) */
+  mcq_uint local_epsilon;   /* 1: epsilon and reach scale with the vertex's local radius (skeleton regions) */
+  float band; /* > 0: a ray's d averages every cell within this distance of its first hit; 0: the first cell (the paper)
+               */
 } mcq_step_params;
 
 /* Robust mode's skeleton regions, as laid out by host/cells/skeleton_regions.h. */
@@ -69,8 +70,10 @@ MCQ_FN mcq_cell_filter mcq_vertex_cell_filter(mcq_regions regions, mcq_uint v, m
 MCQ_FN void mcq_cone_frame(mcq_vec3 n, mcq_vec3* i_axis, mcq_vec3* j_axis) {
   float ax = MCQ_FABS(n.x), ay = MCQ_FABS(n.y), az = MCQ_FABS(n.z);
   mcq_vec3 e = mcq_make_vec3(1.0f, 0.0f, 0.0f);
-  if (ay < ax && ay <= az) e = mcq_make_vec3(0.0f, 1.0f, 0.0f);
-  else if (az < ax && az < ay) e = mcq_make_vec3(0.0f, 0.0f, 1.0f);
+  if (ay < ax && ay <= az)
+    e = mcq_make_vec3(0.0f, 1.0f, 0.0f);
+  else if (az < ax && az < ay)
+    e = mcq_make_vec3(0.0f, 0.0f, 1.0f);
   *j_axis = mcq_normalize(mcq_cross(n, e));
   *i_axis = mcq_cross(*j_axis, n);
 }
@@ -80,8 +83,8 @@ MCQ_FN mcq_uint mcq_ray_count(mcq_uint cones, mcq_uint generators) { return cone
 
 /* Unit direction of ray k: k = 0 is the axis n; k = 1 + (l-1)*r + g is
  * generator g of cone l, at half angle l*alpha_max/c and azimuth 2*pi*g/r. */
-MCQ_FN mcq_vec3 mcq_ray_direction(mcq_vec3 n, mcq_vec3 i_axis, mcq_vec3 j_axis, mcq_uint ray,
-                                  mcq_uint cones, mcq_uint generators, float alpha_max) {
+MCQ_FN mcq_vec3 mcq_ray_direction(mcq_vec3 n, mcq_vec3 i_axis, mcq_vec3 j_axis, mcq_uint ray, mcq_uint cones,
+                                  mcq_uint generators, float alpha_max) {
   if (ray == 0) return n;
   mcq_uint l = (ray - 1) / generators + 1;
   mcq_uint g = (ray - 1) % generators;
@@ -95,8 +98,8 @@ MCQ_FN mcq_vec3 mcq_ray_direction(mcq_vec3 n, mcq_vec3 i_axis, mcq_vec3 j_axis, 
 /* Index of random sample `sample` of `ray` of `vertex` inside a cell of
  * `count` points: Philox keyed by (seed, iteration), counter (vertex, ray,
  * sample / 4), word sample % 4. */
-MCQ_FN mcq_uint mcq_sample_index(mcq_uint seed, mcq_uint iteration, mcq_uint vertex, mcq_uint ray,
-                                 mcq_uint sample, mcq_uint count) {
+MCQ_FN mcq_uint mcq_sample_index(mcq_uint seed, mcq_uint iteration, mcq_uint vertex, mcq_uint ray, mcq_uint sample,
+                                 mcq_uint count) {
   mcq_philox_block counter;
   counter.v[0] = vertex;
   counter.v[1] = ray;
@@ -114,9 +117,9 @@ MCQ_FN mcq_uint mcq_sample_index(mcq_uint seed, mcq_uint iteration, mcq_uint ver
  * normal (the least of 10 samples); the mean estimates the cell's middle,
  * unbiased, and averages the noise away (docs/DESIGN.md). `stream` tells
  * apart the cells of one ray's band, so each draws its own samples. */
-MCQ_FN float mcq_cell_distance(const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points,
-                                    int cell, mcq_vec3 q, mcq_vec3 dir, mcq_step_params params,
-                                    mcq_uint vertex, mcq_uint ray, mcq_uint stream) {
+MCQ_FN float mcq_cell_distance(const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points, int cell,
+                               mcq_vec3 q, mcq_vec3 dir, mcq_step_params params, mcq_uint vertex, mcq_uint ray,
+                               mcq_uint stream) {
   mcq_uint first = cell_offsets[cell];
   mcq_uint count = cell_offsets[cell + 1] - first;
   float d = MCQ_INFINITY, sum = 0.0f;
@@ -183,8 +186,8 @@ MCQ_FN float mcq_vertex_displacement(const MCQ_GLOBAL float* node_bounds, const 
     float dir_x[MCQ_PACKET_SIZE], dir_y[MCQ_PACKET_SIZE], dir_z[MCQ_PACKET_SIZE], entries[MCQ_PACKET_SIZE];
     int cells[MCQ_PACKET_SIZE];
     for (int k = 0; k < count; ++k) {
-      mcq_vec3 dir = mcq_ray_direction(n, i_axis, j_axis, first + (mcq_uint)k, params.cones, params.generators,
-                                       params.alpha_max);
+      mcq_vec3 dir =
+          mcq_ray_direction(n, i_axis, j_axis, first + (mcq_uint)k, params.cones, params.generators, params.alpha_max);
       dir_x[k] = dir.x;
       dir_y[k] = dir.y;
       dir_z[k] = dir.z;
@@ -309,16 +312,17 @@ MCQ_FN mcq_vec3 mcq_evolve_vertex(const MCQ_GLOBAL float* positions, const MCQ_G
                                   mcq_step_params params, mcq_uint* feasible) {
   mcq_vec3 q = mcq_load3(positions, vertex);
   mcq_vec3 n = mcq_load3(normals, vertex);
-  float delta = mcq_vertex_displacement(cells.node_bounds, cells.node_children, cells.cell_offsets, cells.points, regions,
-                                        q, n, vertex, params, feasible);
+  float delta = mcq_vertex_displacement(cells.node_bounds, cells.node_children, cells.cell_offsets, cells.points,
+                                        regions, q, n, vertex, params, feasible);
   mcq_vec3 target = mcq_add(q, mcq_scale(n, delta));
   int in_hole = *feasible == 0u && params.fill_holes && !mesh.boundary[vertex];
   if (in_hole)
     target = mcq_hole_position(positions, initial_positions, initial_normals, mesh.faces, mesh.vertex_face_offsets,
                                mesh.vertex_faces, vertex);
   if (params.fold_guard && (delta != 0.0f || in_hole))
-    target = mcq_add(q, mcq_scale(mcq_sub(target, q), mcq_fold_safe_fraction(positions, mesh.faces, mesh.vertex_face_offsets,
-                                                                              mesh.vertex_faces, vertex, q, target)));
+    target =
+        mcq_add(q, mcq_scale(mcq_sub(target, q), mcq_fold_safe_fraction(positions, mesh.faces, mesh.vertex_face_offsets,
+                                                                        mesh.vertex_faces, vertex, q, target)));
   return target;
 }
 

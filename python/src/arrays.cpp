@@ -19,7 +19,8 @@ std::string shape_text(const py::array& a) {
 size_t rows_of(const py::array& a, py::ssize_t columns, const std::string& name, const char* what) {
   if (a.ndim() == 1 && a.shape(0) == 0) return 0;
   if (a.ndim() != 2 || a.shape(1) != columns)
-    throw InputError(name + ": " + what + " must have shape (N, " + std::to_string(columns) + "), not " + shape_text(a));
+    throw InputError(name + ": " + what + " must have shape (N, " + std::to_string(columns) + "), not " +
+                     shape_text(a));
   return size_t(a.shape(0));
 }
 
@@ -55,8 +56,8 @@ SkeletonData skeleton_from_arrays(const DoubleArray& nodes, const IndexArray& ed
   for (size_t i = 0; i < e; ++i) {
     for (int k = 0; k < 2; ++k)
       if (edge(i, k) < 0 || size_t(edge(i, k)) >= n)
-        throw InputError(name + ": edge " + std::to_string(i) + " names node " + std::to_string(edge(i, k)) + ", but there are " +
-                         std::to_string(n) + " nodes (indices are 0-based)");
+        throw InputError(name + ": edge " + std::to_string(i) + " names node " + std::to_string(edge(i, k)) +
+                         ", but there are " + std::to_string(n) + " nodes (indices are 0-based)");
     skeleton.edges.push_back({int(edge(i, 0)), int(edge(i, 1))});
   }
   return skeleton;
@@ -82,12 +83,14 @@ QuadMesh mesh_from_arrays(const DoubleArray& vertices, const IndexArray& faces, 
       int64_t index = f(i, k);
       if (index == -1) break;
       if (index < 0 || size_t(index) >= n)
-        throw InputError(name + ": face " + std::to_string(i) + " names vertex " + std::to_string(index) + " of " + std::to_string(n));
+        throw InputError(name + ": face " + std::to_string(i) + " names vertex " + std::to_string(index) + " of " +
+                         std::to_string(n));
       corners.push_back(mesh.vertex_handle(unsigned(index)));
     }
     if (corners.size() < 3) throw InputError(name + ": face " + std::to_string(i) + " has fewer than 3 corners");
     if (!mesh.add_face(corners).is_valid())
-      throw InputError(name + ": face " + std::to_string(i) + " makes the mesh non-manifold or turns against its neighbours");
+      throw InputError(name + ": face " + std::to_string(i) +
+                       " makes the mesh non-manifold or turns against its neighbours");
   }
   return mesh;
 }

@@ -122,7 +122,8 @@ py::object metrics_json(DoubleArray vertices, IndexArray faces, FloatArray point
   PointCloud cloud = cloud_from_array(points, "points", normals);
   std::unique_ptr<SkeletonData> skeleton;
   if (!nodes.is_none())
-    skeleton = std::make_unique<SkeletonData>(skeleton_from_arrays(nodes.cast<DoubleArray>(), edges.cast<IndexArray>(), "skeleton"));
+    skeleton = std::make_unique<SkeletonData>(
+        skeleton_from_arrays(nodes.cast<DoubleArray>(), edges.cast<IndexArray>(), "skeleton"));
   nlohmann::json metrics;
   {
     py::gil_scoped_release release;
@@ -177,14 +178,16 @@ py::list shape_names() {
 //! Python exception classes deriving from mcquad.Error and, where it fits,
 //! the built-in a Python user would catch (ValueError, OSError).
 void register_exceptions(py::module_& m) {
-  static PyObject* error = PyErr_NewExceptionWithDoc("mcquad.Error", "Base of every mcquad error.", PyExc_RuntimeError, nullptr);
+  static PyObject* error =
+      PyErr_NewExceptionWithDoc("mcquad.Error", "Base of every mcquad error.", PyExc_RuntimeError, nullptr);
   auto derived = [&](const char* name, const char* doc, PyObject* builtin) {
     py::tuple bases = builtin ? py::tuple(py::make_tuple(py::handle(error), py::handle(builtin)))
                               : py::tuple(py::make_tuple(py::handle(error)));
     PyObject* type = PyErr_NewExceptionWithDoc(name, doc, bases.ptr(), nullptr);
     return type;
   };
-  static PyObject* input = derived("mcquad.InputError", "Malformed or inconsistent input: files, arrays, options.", PyExc_ValueError);
+  static PyObject* input =
+      derived("mcquad.InputError", "Malformed or inconsistent input: files, arrays, options.", PyExc_ValueError);
   static PyObject* unsupported = derived("mcquad.UnsupportedError", "Valid input this version cannot handle.", nullptr);
   static PyObject* device = derived("mcquad.DeviceError", "No usable OpenCL device, or a device fault.", nullptr);
   static PyObject* output = derived("mcquad.OutputError", "An output file could not be written.", PyExc_OSError);
@@ -214,8 +217,8 @@ PYBIND11_MODULE(_core, m) {
   m.doc() = "mcquad's compiled core; use the functions of the mcquad package.";
   m.attr("__version__") = MCQUAD_VERSION;
   register_exceptions(m);
-  m.def("fit", &fit_arrays, py::arg("points"), py::arg("normals"), py::arg("nodes"), py::arg("edges"), py::arg("options"),
-        py::arg("points_name"), py::arg("skeleton_name"), py::arg("progress") = py::none());
+  m.def("fit", &fit_arrays, py::arg("points"), py::arg("normals"), py::arg("nodes"), py::arg("edges"),
+        py::arg("options"), py::arg("points_name"), py::arg("skeleton_name"), py::arg("progress") = py::none());
   m.def("fit_defaults", &fit_defaults, "The fit options' defaults, as the CLI shows them.");
   m.def("shape_defaults", &shape_defaults, "The generator options' defaults.");
   m.def("read_points", &read_points, py::arg("path"));
@@ -225,8 +228,8 @@ PYBIND11_MODULE(_core, m) {
   m.def("write_mesh", &write_mesh_arrays, py::arg("path"), py::arg("vertices"), py::arg("faces"));
   m.def("generate", &generate, py::arg("name"), py::arg("directory"), py::arg("options"));
   m.def("shape_names", &shape_names);
-  m.def("metrics", &metrics_json, py::arg("vertices"), py::arg("faces"), py::arg("points"), py::arg("normals"), py::arg("nodes"),
-        py::arg("edges"), py::arg("leaf_size"));
+  m.def("metrics", &metrics_json, py::arg("vertices"), py::arg("faces"), py::arg("points"), py::arg("normals"),
+        py::arg("nodes"), py::arg("edges"), py::arg("leaf_size"));
   m.def("surfaces", &surfaces_json, py::arg("vertices"), py::arg("faces"), py::arg("cad_path"), py::arg("points"),
         py::arg("control_nets"), py::arg("tangent_tolerance"), py::arg("units"));
 }

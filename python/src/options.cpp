@@ -73,7 +73,8 @@ const FieldTable<FitOptions>& fit_fields() {
       {"device", plain(&O::device)},
       {"mode", word<O, E::Mode>([](O& o) -> E::Mode& { return o.evolution.mode; }, evolution_mode_words, "mode")},
       {"relaxation", nested(&O::evolution, &E::relaxation)},
-      {"projection", word<O, bool>([](O& o) -> bool& { return o.evolution.mean_projection; }, projection_words, "projection")},
+      {"projection",
+       word<O, bool>([](O& o) -> bool& { return o.evolution.mean_projection; }, projection_words, "projection")},
       {"fill_holes", nested(&O::evolution, &E::fill_holes)},
       {"crossing_guard", nested(&O::evolution, &E::crossing_guard)},
       {"held_back_relaxation", nested(&O::evolution, &E::held_back_relaxation)},
@@ -90,12 +91,15 @@ const FieldTable<FitOptions>& fit_fields() {
       {"epsilon", nested(&O::evolution, &E::epsilon)},
       {"leaf_size", plain(&O::leaf_size)},
       {"snapshots", plain(&O::snapshots_directory)},
-      {"surfaces", {[](const O& o) { return py::cast(o.surfaces.cad_path); },
-                    [](O& o, const py::handle& v) { o.surfaces.cad_path = v.cast<std::string>(); }}},
-      {"control_nets", {[](const O& o) { return py::cast(o.surfaces.control_nets_path); },
-                        [](O& o, const py::handle& v) { o.surfaces.control_nets_path = v.cast<std::string>(); }}},
-      {"units", {[](const O& o) { return py::cast(o.surfaces.units); },
-                 [](O& o, const py::handle& v) { o.surfaces.units = v.cast<std::string>(); }}},
+      {"surfaces",
+       {[](const O& o) { return py::cast(o.surfaces.cad_path); },
+        [](O& o, const py::handle& v) { o.surfaces.cad_path = v.cast<std::string>(); }}},
+      {"control_nets",
+       {[](const O& o) { return py::cast(o.surfaces.control_nets_path); },
+        [](O& o, const py::handle& v) { o.surfaces.control_nets_path = v.cast<std::string>(); }}},
+      {"units",
+       {[](const O& o) { return py::cast(o.surfaces.units); },
+        [](O& o, const py::handle& v) { o.surfaces.units = v.cast<std::string>(); }}},
   };
   return table;
 }
@@ -103,10 +107,14 @@ const FieldTable<FitOptions>& fit_fields() {
 const FieldTable<ShapeOptions>& shape_fields() {
   using S = ShapeOptions;
   static const FieldTable<S> table = {
-      {"points", plain(&S::points)},         {"noise", plain(&S::noise)},
-      {"seed", plain(&S::seed)},             {"angle", plain(&S::angle_degrees)},
-      {"arms", plain(&S::arms)},             {"outliers", plain(&S::outliers)},
-      {"density_ratio", plain(&S::density_ratio)}, {"holes", plain(&S::holes)},
+      {"points", plain(&S::points)},
+      {"noise", plain(&S::noise)},
+      {"seed", plain(&S::seed)},
+      {"angle", plain(&S::angle_degrees)},
+      {"arms", plain(&S::arms)},
+      {"outliers", plain(&S::outliers)},
+      {"density_ratio", plain(&S::density_ratio)},
+      {"holes", plain(&S::holes)},
   };
   return table;
 }
