@@ -6,6 +6,7 @@
 
 #include <memory>
 
+#include "evolution/evolution_backend.h"
 #include "evolution/evolve.h"
 #include "evolution/serial_backend.h"
 #include "helpers.h"
@@ -60,13 +61,17 @@ struct Fixture {
     return summarize_distances(relative);
   }
 
-  //! Final positions of a serial evolution in `mode`, the rest as in `parameters`.
-  std::vector<float> evolve_serially(EvolutionParameters::Mode mode) const {
-    SerialBackend backend;
+  //! Final positions of an evolution on `backend` in `mode`, the rest as in `parameters`.
+  std::vector<float> evolve_on(EvolutionBackend& backend, EvolutionParameters::Mode mode) const {
     backend.load(cells, arrays, regions);
     EvolutionParameters p = parameters;
     p.mode = mode;
     return evolve(backend, arrays, p).positions;
+  }
+
+  std::vector<float> evolve_serially(EvolutionParameters::Mode mode) const {
+    SerialBackend backend;
+    return evolve_on(backend, mode);
   }
 };
 
@@ -107,6 +112,41 @@ inline size_t count_differing(const std::vector<float>& a, const std::vector<flo
   return differing;
 }
 
+#endif
+
+//! The backends behaviour tests run on (TEST_P over these): the serial path,
+//! and OpenCL in builds that have it.
+inline std::vector<BackendKind> backend_kinds() {
+#ifdef MCQUAD_WITH_OPENCL
+  return {BackendKind::kSerial, BackendKind::kOpenCL};
+#else
+  return {BackendKind::kSerial};
+#endif
+}
+
+inline std::string backend_label(const testing::TestParamInfo<BackendKind>& info) {
+  return info.param == BackendKind::kSerial ? "Serial" : "OpenCL";
+}
+
+//! A backend of `kind`; null where OpenCL has no device (a failure where CI
+//! requires one: the test then returns, else it skips).
+inline std::unique_ptr<EvolutionBackend> backend_of(BackendKind kind) {
+  if (kind == BackendKind::kSerial) return std::make_unique<SerialBackend>();
+#ifdef MCQUAD_WITH_OPENCL
+  return opencl_or_skip();
+#else
+  return nullptr;
+#endif
+}
+
+#define REQUIRE_BACKEND(backend, kind)                                          \
+  auto backend = ::mcquad::test::backend_of(kind);                              \
+  if (!backend) {                                                               \
+    if (!::mcquad::test::opencl_required()) GTEST_SKIP() << "no OpenCL device"; \
+    return;                                                                     \
+  }
+
+#ifdef MCQUAD_WITH_OPENCL
 #define REQUIRE_OPENCL(backend)                                                 \
   auto backend = ::mcquad::test::opencl_or_skip();                              \
   if (!backend) {                                                               \

@@ -4,7 +4,7 @@
 #include "core/errors.h"
 #include "evolution/evolve.h"
 #include "evolution/serial_backend.h"
-#include "evolution_fixture.h"
+#include "evolution/evolution_fixture.h"
 #include "helpers.h"
 #include "mesh/initial_mesh.h"
 #include "mesh/mesh_arrays.h"
@@ -26,10 +26,15 @@ using test::Fixture;
 using test::count_differing;
 #endif
 
+//! The behaviour tests run on every backend: the serial path and the
+//! OpenCL kernels (PoCL in CI) must each meet the bars on their own.
+class OnEachBackend : public testing::TestWithParam<BackendKind> {};
+
 //! Issue 4's quality bar, at the paper's parameters and the default cells:
 //! mean distance to the true surface at most 1 % of the tube radius, 95th
 //! percentile at most 3 %, and 95 % of the cloud within 5 % of the mesh.
-TEST(SerialEvolution, VerticesEndOnTheTrueSurfaceAndCoverTheCloud) {
+TEST_P(OnEachBackend, VerticesEndOnTheTrueSurfaceAndCoverTheCloud) {
+  REQUIRE_BACKEND(backend, GetParam());
   // The paper's T, the Fig. 6 stand-in at its full 182,274 points, and plain tubes.
   for (auto [name, points] : {std::pair<const char*, size_t>{"t-shape", 60000},
                               {"tube-frame", 182274},
@@ -37,9 +42,8 @@ TEST(SerialEvolution, VerticesEndOnTheTrueSurfaceAndCoverTheCloud) {
                               {"torus", 40000},
                               {"bent-tube", 40000}}) {
     Fixture f(name, points);
-    SerialBackend backend;
-    backend.load(f.cells, f.arrays, f.regions);
-    EvolutionResult result = evolve(backend, f.arrays, f.parameters);
+    backend->load(f.cells, f.arrays, f.regions);
+    EvolutionResult result = evolve(*backend, f.arrays, f.parameters);
     ASSERT_EQ(result.iterations.size(), f.parameters.iterations);
     EXPECT_LT(result.iterations.back().error_level, 0.2 * result.initial_error_level) << name;
     DistanceSummary to_surface = f.relative_surface_distances(result.positions);
@@ -57,42 +61,39 @@ TEST(SerialEvolution, VerticesEndOnTheTrueSurfaceAndCoverTheCloud) {
   }
 }
 
-TEST(SerialEvolution, SameSeedSameResultDifferentSeedDifferent) {
+TEST_P(OnEachBackend, SameSeedSameResultDifferentSeedDifferent) {
+  REQUIRE_BACKEND(backend, GetParam());
   Fixture f("tube", 10000);
   auto run = [&](uint32_t seed) {
-    SerialBackend backend;
-    backend.load(f.cells, f.arrays, f.regions);
+    backend->load(f.cells, f.arrays, f.regions);
     EvolutionParameters p = f.parameters;
     p.seed = seed;
     p.iterations = 3;
-    return evolve(backend, f.arrays, p).positions;
+    return evolve(*backend, f.arrays, p).positions;
   };
   EXPECT_EQ(run(7), run(7));
   EXPECT_NE(run(7), run(8));
 }
 
-TEST(SerialEvolution, ToleranceStopsEarly) {
+TEST_P(OnEachBackend, ToleranceStopsEarly) {
+  REQUIRE_BACKEND(backend, GetParam());
   Fixture f("tube", 10000);
-  SerialBackend backend;
-  backend.load(f.cells, f.arrays, f.regions);
+  backend->load(f.cells, f.arrays, f.regions);
   EvolutionParameters p = f.parameters;
   p.iterations = 50;
   p.tolerance = 0.01;
-  EvolutionResult result = evolve(backend, f.arrays, p);
+  EvolutionResult result = evolve(*backend, f.arrays, p);
   EXPECT_LT(result.iterations.size(), 50u);
 }
 
 //! Robust mode (the default) against the paper's step at the T's concave
 //! creases, where the paper's vertices fold their quads and cross.
-TEST(RobustMode, FoldsAndCrossesLessThanThePaperAtCreases) {
+TEST_P(OnEachBackend, RobustModeFoldsAndCrossesLessThanThePaperAtCreases) {
+  REQUIRE_BACKEND(backend, GetParam());
   Fixture f("t-shape", 30000);
   auto run = [&](EvolutionParameters::Mode mode) {
-    SerialBackend backend;
-    backend.load(f.cells, f.arrays, f.regions);
-    EvolutionParameters p = f.parameters;
-    p.mode = mode;
     QuadMesh mesh = f.initial.mesh;
-    set_positions(mesh, evolve(backend, f.arrays, p).positions);
+    set_positions(mesh, f.evolve_on(*backend, mode));
     return std::make_pair(intersecting_face_pairs(mesh).size(), folded_edges(mesh));
   };
   auto paper = run(EvolutionParameters::Mode::kPaper);
@@ -106,13 +107,14 @@ TEST(RobustMode, FoldsAndCrossesLessThanThePaperAtCreases) {
 //! mode (the mean of a cell's sample projections) the mean distance to the
 //! true surface stays below the noise; the paper's minimum follows the most
 //! inward sample and ends further off than the noise itself.
-TEST(RobustMode, NoiseDoesNotPullTheMeshOffTheSurface) {
+TEST_P(OnEachBackend, RobustModeNoiseDoesNotPullTheMeshOffTheSurface) {
+  REQUIRE_BACKEND(backend, GetParam());
   for (double sigma : {0.02, 0.05}) {
     ShapeOptions options;
     options.noise = sigma;
     Fixture f("t-shape", 40000, options);
     auto mean_distance = [&](EvolutionParameters::Mode mode) {
-      return f.relative_surface_distances(f.evolve_serially(mode)).mean;
+      return f.relative_surface_distances(f.evolve_on(*backend, mode)).mean;
     };
     double robust = mean_distance(EvolutionParameters::Mode::kRobust);
     double paper = mean_distance(EvolutionParameters::Mode::kPaper);
@@ -123,15 +125,20 @@ TEST(RobustMode, NoiseDoesNotPullTheMeshOffTheSurface) {
 
 //! Issue 6: where the scan has holes, the mesh spans them instead of
 //! staying dented where the initial mesh put it (about 0.3 r inside).
-TEST(RobustMode, HolesInTheScanAreSpanned) {
+TEST_P(OnEachBackend, RobustModeSpansHolesInTheScan) {
+  REQUIRE_BACKEND(backend, GetParam());
   ShapeOptions options;
   options.holes = 3;
   Fixture f("t-shape", 40000, options);
-  auto p95 = [&](EvolutionParameters::Mode mode) { return f.relative_surface_distances(f.evolve_serially(mode)).p95; };
+  auto p95 = [&](EvolutionParameters::Mode mode) {
+    return f.relative_surface_distances(f.evolve_on(*backend, mode)).p95;
+  };
   double robust = p95(EvolutionParameters::Mode::kRobust), paper = p95(EvolutionParameters::Mode::kPaper);
   EXPECT_GT(paper, 0.2) << "the paper's vertices in the holes stay where they started";
   EXPECT_LT(robust, 0.08);
 }
+
+INSTANTIATE_TEST_SUITE_P(Evolution, OnEachBackend, testing::ValuesIn(test::backend_kinds()), test::backend_label);
 
 #ifdef MCQUAD_WITH_OPENCL
 

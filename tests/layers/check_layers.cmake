@@ -1,5 +1,5 @@
 # Fails when a folder of host/ includes a header of a folder above it.
-#   cmake -DROOT=<repository root> -P tests/check_layers.cmake
+#   cmake -DROOT=<repository root> -P tests/layers/check_layers.cmake
 # The order, lowest first; each folder may include its own and lower ones.
 # (cli/ and python/ sit above all of them.)
 set(LAYERS core io skeleton mesh cells evolution opencl metrics surfaces generate pipeline report)

@@ -5,7 +5,7 @@
 
 #include <algorithm>
 
-#include "evolution_fixture.h"
+#include "evolution/evolution_fixture.h"
 #include "generate/true_surface_distance.h"
 #include "mesh/face_intersections.h"
 #include "metrics/mesh_metrics.h"
