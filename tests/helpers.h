@@ -7,6 +7,7 @@
 #include <fstream>
 #include <string>
 
+#include "core/quad_mesh.h"
 #include "generate/shapes.h"
 
 namespace mcquad::test {
@@ -39,6 +40,32 @@ class TempDir {
 
 //! OpenCL tests may skip only outside CI: with CI=true or
 //! MCQUAD_REQUIRE_OPENCL=1 a missing device is a failure.
+//! Appends an n x n grid of quads to `mesh`, vertex (i, j) at place(i, j).
+template <typename Place>
+void add_quad_grid(QuadMesh& mesh, int n, Place&& place) {
+  std::vector<QuadMesh::VertexHandle> v;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) v.push_back(mesh.add_vertex(place(i, j)));
+  auto at = [&](int a, int b) { return v[size_t(a * (n + 1) + b)]; };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) mesh.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+}
+
+//! The cube [0, 1]^3 as six outward quads; `inward` turns every face over.
+inline QuadMesh unit_cube(bool inward = false) {
+  QuadMesh mesh;
+  std::vector<QuadMesh::VertexHandle> v;
+  for (int k = 0; k < 8; ++k) v.push_back(mesh.add_vertex(QuadMesh::Point(k & 1, (k >> 1) & 1, (k >> 2) & 1)));
+  const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& f : faces) {
+    if (inward)
+      mesh.add_face(v[size_t(f[3])], v[size_t(f[2])], v[size_t(f[1])], v[size_t(f[0])]);
+    else
+      mesh.add_face(v[size_t(f[0])], v[size_t(f[1])], v[size_t(f[2])], v[size_t(f[3])]);
+  }
+  return mesh;
+}
+
 inline bool opencl_required() {
   const char* ci = std::getenv("CI");
   const char* require = std::getenv("MCQUAD_REQUIRE_OPENCL");

@@ -1,5 +1,7 @@
 #include "mesh/face_intersections.h"
 
+#include "mesh/triangle_tree.h"
+
 #include <algorithm>
 
 namespace mcquad {
@@ -128,98 +130,26 @@ std::vector<std::pair<int, int>> intersecting_face_pairs(const QuadMesh& mesh) {
 
 std::vector<std::pair<int, int>> intersecting_face_pairs(const MeshTriangles& triangles,
                                                          const std::vector<char>* only_faces) {
-  size_t n = triangles.size();
+  const size_t n = triangles.size();
   if (n == 0) return {};
-  // Boxes in floats, rounded outward (half the memory at millions of
-  // triangles; the exact test after them is in doubles).
-  std::vector<Eigen::Vector3f> lo(n), hi(n);
-  Eigen::Vector3d low = Eigen::Vector3d::Constant(INFINITY), high = -low;
-  double extent = 0;
-  for (size_t t = 0; t < n; ++t) {
-    Eigen::Vector3d l = triangles.corner(t, 0).cwiseMin(triangles.corner(t, 1)).cwiseMin(triangles.corner(t, 2));
-    Eigen::Vector3d h = triangles.corner(t, 0).cwiseMax(triangles.corner(t, 1)).cwiseMax(triangles.corner(t, 2));
-    for (int k = 0; k < 3; ++k) {
-      lo[t][k] = std::nextafter(float(l[k]), -INFINITY);
-      hi[t][k] = std::nextafter(float(h[k]), INFINITY);
-    }
-    low = low.cwiseMin(l);
-    high = high.cwiseMax(h);
-    extent += (h - l).maxCoeff();
-  }
-  // Each triangle goes into every grid cell its box overlaps. Cells of three
-  // times the mean box extent keep that to a few cells a triangle, however
-  // uneven the edge lengths (a cell of the longest edge puts thousands of
-  // small triangles together next to one long one).
-  constexpr int kBits = 21;
-  double cell = std::max({3.0 * extent / double(n), (high - low).maxCoeff() / double((1 << kBits) - 4), 1e-12});
-  using Cell = Eigen::Matrix<uint32_t, 3, 1>;
-  auto cell_of = [&](const Eigen::Vector3f& p) {
-    Eigen::Vector3d c = ((p.cast<double>() - low) / cell).cwiseMax(0.0);
-    return Cell(uint32_t(c.x()), uint32_t(c.y()), uint32_t(c.z()));
-  };
-  auto key = [](const Cell& c) { return uint64_t(c.x()) << (2 * kBits) | uint64_t(c.y()) << kBits | c.z(); };
-  auto for_each_cell = [&](size_t t, auto&& visit) {
-    auto a = cell_of(lo[t]), b = cell_of(hi[t]);
-    for (uint32_t x = a.x(); x <= b.x(); ++x)
-      for (uint32_t y = a.y(); y <= b.y(); ++y)
-        for (uint32_t z = a.z(); z <= b.z(); ++z) visit(key(Cell(x, y, z)));
-  };
-  // With `only_faces`, just the cells those faces touch matter: the other
-  // triangles enter the grid only where they share such a cell.
-  auto is_wanted = [&](size_t t) { return !only_faces || (*only_faces)[size_t(triangles.face[t])]; };
-  std::vector<uint64_t> wanted_cells;
+  // The candidates are the triangles whose boxes overlap (mesh/triangle_tree.h,
+  // the tree the cloud → mesh distances use too), then an exact test.
+  TriangleTree tree(triangles);
+  std::vector<char> wanted_triangles;
   if (only_faces) {
-    for (size_t t = 0; t < n; ++t)
-      if (is_wanted(t)) for_each_cell(t, [&](uint64_t k) { wanted_cells.push_back(k); });
-    std::sort(wanted_cells.begin(), wanted_cells.end());
-    wanted_cells.erase(std::unique(wanted_cells.begin(), wanted_cells.end()), wanted_cells.end());
+    wanted_triangles.resize(n);
+    for (size_t t = 0; t < n; ++t) wanted_triangles[t] = (*only_faces)[size_t(triangles.face[t])];
   }
-  // The cell of each box's low corner: the cell of two boxes' overlap's low
-  // corner is their componentwise maximum (cells are monotone per axis).
-  std::vector<Cell> low_cell(n);
-  for (size_t t = 0; t < n; ++t) low_cell[t] = cell_of(lo[t]);
-  std::vector<std::pair<uint64_t, uint32_t>> entries;
-  entries.reserve(only_faces ? 8 * wanted_cells.size() : 2 * n);
-  for (size_t t = 0; t < n; ++t)
-    for_each_cell(t, [&](uint64_t k) {
-      if (!only_faces || std::binary_search(wanted_cells.begin(), wanted_cells.end(), k))
-        entries.emplace_back(k, uint32_t(t));
-    });
-  std::sort(entries.begin(), entries.end());
-  std::vector<uint32_t> runs;  // where each cell's run of entries begins
-  for (size_t k = 0; k < entries.size(); ++k)
-    if (k == 0 || entries[k].first != entries[k - 1].first) runs.push_back(uint32_t(k));
-  runs.push_back(uint32_t(entries.size()));
-  std::vector<std::pair<int, int>> pairs;
   // Threads pay off only on large meshes (the evolution's guard calls this
   // every step, often with a few faces).
-#pragma omp parallel if (entries.size() > 8192)
-  {
-    std::vector<std::pair<int, int>> found;
-    long cells = long(runs.size()) - 1;
-    std::vector<uint32_t> in_cell;
-#pragma omp for schedule(dynamic, 64)
-    for (long r = 0; r < cells; ++r) {
-      uint64_t here = entries[runs[size_t(r)]].first;
-      // Sweep along x within the cell: only boxes overlapping in x pair up.
-      in_cell.clear();
-      for (size_t m = runs[size_t(r)]; m < runs[size_t(r) + 1]; ++m) in_cell.push_back(entries[m].second);
-      std::sort(in_cell.begin(), in_cell.end(), [&](uint32_t a, uint32_t b) { return lo[a].x() < lo[b].x(); });
-      for (size_t m = 0; m < in_cell.size(); ++m)
-        for (size_t k = m + 1; k < in_cell.size() && lo[in_cell[k]].x() <= hi[in_cell[m]].x(); ++k) {
-          uint32_t a = in_cell[m], b = in_cell[k];
-          int fa = triangles.face[a], fb = triangles.face[b];
-          if (fa == fb || (only_faces && !(*only_faces)[size_t(fa)] && !(*only_faces)[size_t(fb)])) continue;
-          // A pair of boxes overlaps in several cells; it is tested in the
-          // one holding the low corner of the overlap.
-          if ((lo[a].cwiseMax(lo[b]).array() > hi[a].cwiseMin(hi[b]).array()).any()) continue;
-          if (key(low_cell[a].cwiseMax(low_cell[b])) != here) continue;
-          if (triangle_pair_intersects(triangles, a, b)) found.emplace_back(std::min(fa, fb), std::max(fa, fb));
-        }
-    }
-#pragma omp critical
-    pairs.insert(pairs.end(), found.begin(), found.end());
-  }
+  std::vector<std::vector<std::pair<int, int>>> found(static_cast<size_t>(omp_get_max_threads()));
+  tree.for_each_overlapping_pair(only_faces ? &wanted_triangles : nullptr, [&](size_t a, size_t b, int thread) {
+    const int fa = triangles.face[a], fb = triangles.face[b];
+    if (fa != fb && triangle_pair_intersects(triangles, a, b))
+      found[size_t(thread)].emplace_back(std::min(fa, fb), std::max(fa, fb));
+  });
+  std::vector<std::pair<int, int>> pairs;
+  for (const auto& some : found) pairs.insert(pairs.end(), some.begin(), some.end());
   // A quad is two triangles, so a pair of faces can be found twice.
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());

@@ -40,8 +40,8 @@ MeshTriangles triangulate(const std::vector<uint32_t>& quads, const std::vector<
 
 //! Pairs of faces that intersect, faces sharing a vertex excluded, sorted.
 //! Each quad is split into two triangles along its 0-2 diagonal. Candidates
-//! are the triangles whose bounding boxes overlap in a uniform grid (each
-//! triangle in every cell its box touches), then an exact test.
+//! are the triangles whose bounding boxes overlap (found in a TriangleTree,
+//! mesh/triangle_tree.h), then an exact test.
 std::vector<std::pair<int, int>> intersecting_face_pairs(const QuadMesh& mesh);
 //! The same on triangles; with `only_faces` (per face, nonzero = test it),
 //! just the pairs with at least one of those faces.

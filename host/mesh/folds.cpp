@@ -1,5 +1,9 @@
 #include "mesh/folds.h"
 
+#include <set>
+#include <utility>
+#include <vector>
+
 namespace mcquad {
 
 bool is_folded(const QuadMesh& mesh, QuadMesh::EdgeHandle edge) {
@@ -13,6 +17,32 @@ size_t folded_edges(const QuadMesh& mesh) {
   size_t folded = 0;
   for (auto e : mesh.edges()) folded += is_folded(mesh, e);
   return folded;
+}
+
+void relax_folds(QuadMesh& mesh) {
+  for (int round = 0; round < 50; ++round) {
+    std::set<int> region;
+    for (auto e : mesh.edges()) {
+      if (mesh.is_boundary(e) || !is_folded(mesh, e)) continue;
+      for (int side = 0; side < 2; ++side)
+        for (auto v : mesh.fv_range(mesh.face_handle(mesh.halfedge_handle(e, side))))
+          for (auto w : mesh.vv_range(v)) region.insert(w.idx());
+    }
+    if (region.empty()) return;
+    std::vector<std::pair<int, QuadMesh::Point>> moved;
+    for (int i : region) {
+      auto v = mesh.vertex_handle(i);
+      if (mesh.is_boundary(v)) continue;
+      QuadMesh::Point mean(0, 0, 0);
+      int count = 0;
+      for (auto w : mesh.vv_range(v)) {
+        mean += mesh.point(w);
+        ++count;
+      }
+      moved.emplace_back(i, 0.5 * mesh.point(v) + 0.5 * mean / count);
+    }
+    for (const auto& [i, p] : moved) mesh.set_point(mesh.vertex_handle(i), p);
+  }
 }
 
 }  // namespace mcquad

@@ -20,4 +20,10 @@ bool is_folded(const QuadMesh& mesh, QuadMesh::EdgeHandle edge);
 //! The edges whose faces fold over each other.
 size_t folded_edges(const QuadMesh& mesh);
 
+//! Where tubes meet at a junction, refinement can leave a face folded over
+//! its neighbour. Such places are relaxed (umbrella smoothing of the folded
+//! faces' vertices and their neighbours) until no fold is left, for at most
+//! 50 rounds.
+void relax_folds(QuadMesh& mesh);
+
 }  // namespace mcquad

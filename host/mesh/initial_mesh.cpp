@@ -8,7 +8,7 @@
 #include "core/errors.h"
 #include "core/point_index.h"
 #include "core/shared_math.h"
-#include "mesh/crossing_guard.h"
+#include "mesh/cloud_probe.h"
 #include "mesh/cube_block.h"
 #include "mesh/face_intersections.h"
 #include "mesh/folds.h"
@@ -16,6 +16,7 @@
 #include "mesh/junction_block.h"
 #include "mesh/mesh_arrays.h"
 #include "mesh/open_ends.h"
+#include "mesh/polyline.h"
 #include "mesh/quad_soup.h"
 #include "mesh/refinement.h"
 #include "skeleton/acute_junctions.h"
@@ -44,37 +45,6 @@ std::string node_name(const SkeletonGraph& graph, int node) {
   return "skeleton node at " + point_text(graph.positions[node]);
 }
 
-//! A point at arc length s along a polyline, with the unit tangent there.
-std::pair<Eigen::Vector3d, Eigen::Vector3d> point_at(const std::vector<Eigen::Vector3d>& line, double s) {
-  for (size_t i = 0; i + 1 < line.size(); ++i) {
-    double span = (line[i + 1] - line[i]).norm();
-    if (s <= span || i + 2 == line.size()) {
-      double t = span > 0 ? std::clamp(s / span, 0.0, 1.0) : 0.0;
-      return {line[i] + t * (line[i + 1] - line[i]), (line[i + 1] - line[i]).normalized()};
-    }
-    s -= span;
-  }
-  return {line.back(), Eigen::Vector3d::UnitZ()};
-}
-
-double polyline_length(const std::vector<Eigen::Vector3d>& line) {
-  double length = 0;
-  for (size_t i = 0; i + 1 < line.size(); ++i) length += (line[i + 1] - line[i]).norm();
-  return length;
-}
-
-//! The part of a polyline between arc lengths s0 and s1.
-std::vector<Eigen::Vector3d> sub_polyline(const std::vector<Eigen::Vector3d>& line, double s0, double s1) {
-  std::vector<Eigen::Vector3d> out{point_at(line, s0).first};
-  double s = 0;
-  for (size_t i = 0; i + 1 < line.size(); ++i) {
-    s += (line[i + 1] - line[i]).norm();
-    if (s > s0 && s < s1) out.push_back(line[i + 1]);
-  }
-  out.push_back(point_at(line, s1).first);
-  return out;
-}
-
 //! Which block a junction of at most six bones gets: the cube only where
 //! its bones fit one (kCubeFitDegrees), or the cube wherever it can be built.
 enum class BlockPreference { kFitted, kCube };
@@ -89,7 +59,7 @@ class MeshAssembler {
         options_(options),
         source_(source),
         cloud_index_(cloud_index),
-        spacing_(sample_spacing()) {}
+        probe_(cloud, cloud_index) {}
 
   //! Returns whether the preference mattered: some junction of at most six
   //! bones got the general block.
@@ -122,7 +92,7 @@ class MeshAssembler {
       // any bone's radius (below a moved crotch): each block vertex stays
       // at the start fraction of the way to the cloud in its direction.
       auto reach = [&](const Eigen::Vector3d& direction, double wanted) {
-        return options_.start_fraction * distance_to_cloud(center, direction, wanted / options_.start_fraction);
+        return options_.start_fraction * probe_.distance_along(center, direction, wanted / options_.start_fraction);
       };
       if (cube_fits) {
         ports = add_cube_block(
@@ -156,39 +126,8 @@ class MeshAssembler {
 
   QuadSoup& soup() { return soup_; }
 
-  //! Catmull-Clark cuts corners: in a crease of the cloud (where tubes meet)
-  //! a smoothed vertex can end up outside. Such vertices -- the cloud lies
-  //! behind them along their normal, or nearer than two sample spacings --
-  //! are moved back in along the normal. In a thin branch such a move can
-  //! carry a vertex across the tube to the far wall, so the moves go through
-  //! the evolution's crossing guard: none may make faces cross or fold.
-  void keep_inside_cloud(QuadMesh& mesh) const {
-    MeshArrays arrays = flatten_mesh(mesh);
-    std::vector<float> moved = arrays.positions;
-    double margin = 2.0 * spacing_;
-    for (auto v : mesh.vertices()) {
-      device::mcq_vec3 nv =
-          device::mcq_vertex_normal(arrays.positions.data(), arrays.faces.data(), arrays.vertex_face_offsets.data(),
-                                    arrays.vertex_faces.data(), uint32_t(v.idx()));
-      Eigen::Vector3d n(nv.x, nv.y, nv.z);
-      const auto& q = mesh.point(v);
-      Eigen::Vector3d p(q[0], q[1], q[2]);
-      Eigen::Vector3d w = cloud_.points[cloud_index_.nearest(p.cast<float>()).first].cast<double>() - p;
-      double ahead = w.dot(n);
-      // Capped: in a thin part the nearest point can lie behind a vertex
-      // that is inside (on the far wall); a long shift would cross it.
-      double shift = ahead < margin ? std::min(margin - ahead, 2.0 * margin) : 0.0;
-      for (int k = 0; k < 3; ++k) moved[3 * size_t(v.idx()) + size_t(k)] = float(p[k] - shift * n[k]);
-    }
-    CrossingGuard(arrays).apply(arrays.positions, moved);
-    for (auto v : mesh.vertices()) {
-      const float* m = &moved[3 * size_t(v.idx())];
-      const float* before = &arrays.positions[3 * size_t(v.idx())];
-      if (m[0] != before[0] || m[1] != before[1] || m[2] != before[2])
-        mesh.set_point(v, QuadMesh::Point(m[0], m[1], m[2]));
-    }
-  }
   int open_ends() const { return open_ends_; }
+  const CloudProbe& probe() const { return probe_; }
 
  private:
   //! Radius of the initial tube on the bone from `node` toward `next`.
@@ -219,43 +158,6 @@ class MeshAssembler {
       length = std::max(length, 1.2 * clearance);
     }
     return length;
-  }
-
-  //! Distance from `origin` along `direction` to the cloud: to the
-  //! projection on the ray of the first nearest point found within three
-  //! sample spacings of the ray (randomly sampled clouds have gaps of two
-  //! spacings and more that a tighter bound lets rays slip through). Sphere
-  //! tracing on the distance to the nearest point, stepping at least half a
-  //! spacing where that point lies beside the ray rather than on it (a ray
-  //! from a centre near a thin tube's wall still finds the wall across).
-  //! Tracing stops once past `enough`: callers only need to know that much.
-  double distance_to_cloud(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double enough) const {
-    const double near = 3.0 * spacing_, least_step = std::max(0.5 * spacing_, 1e-3 * enough);
-    double t = 0;
-    for (int step = 0; step < 512 && t < enough; ++step) {
-      Eigen::Vector3d p = origin + t * direction;
-      auto [nearest, d2] = cloud_index_.nearest(p.cast<float>());
-      double gap = std::sqrt(double(d2));
-      Eigen::Vector3d w = cloud_.points[size_t(nearest)].cast<double>() - origin;
-      double along = w.dot(direction);
-      if ((w - along * direction).norm() < near && along >= 0) return along;
-      t += std::max(gap - near, least_step);
-    }
-    return t;
-  }
-
-  //! Typical distance between neighbouring cloud points (median over a
-  //! deterministic subsample).
-  double sample_spacing() const {
-    std::vector<double> gaps;
-    size_t stride = std::max<size_t>(1, cloud_.size() / 500);
-    for (size_t i = 0; i < cloud_.size(); i += stride) {
-      auto neighbours = cloud_index_.k_nearest(cloud_.points[i], 2);
-      if (neighbours.size() == 2) gaps.push_back((cloud_.points[neighbours[1]] - cloud_.points[i]).norm());
-    }
-    if (gaps.empty()) return 0.0;
-    std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
-    return gaps[gaps.size() / 2];
   }
 
   bool end_is_open(int node, const Eigen::Vector3d& outward) {
@@ -384,7 +286,8 @@ class MeshAssembler {
     std::array<double, kRing> distance;
     double enough = radius / options_.start_fraction;
     for (int pass = 0; pass < 3; ++pass) {
-      for (int i = 0; i < kRing; ++i) distance[size_t(i)] = distance_to_cloud(centre, radial[size_t(i)], 2.0 * enough);
+      for (int i = 0; i < kRing; ++i)
+        distance[size_t(i)] = probe_.distance_along(centre, radial[size_t(i)], 2.0 * enough);
       if (*std::min_element(distance.begin(), distance.end()) >= enough || pass == 2) break;
       // Opposite directions see the wall at R + d.r and R - d.r from a centre
       // off by d; over the four pairs 45 degrees apart, their differences
@@ -449,8 +352,8 @@ class MeshAssembler {
     // Like the rings, the cap stops at the start fraction of the way to the
     // cloud: where two merged tubes end side by side (acute_junctions.h) the
     // cloud's end is notched in the middle, nearer than the radius.
-    radius = std::min(radius,
-                      options_.start_fraction * distance_to_cloud(center, outward, radius / options_.start_fraction));
+    radius = std::min(
+        radius, options_.start_fraction * probe_.distance_along(center, outward, radius / options_.start_fraction));
     std::array<int, kRing> cap_ring;
     for (int i = 0; i < kRing; ++i) {
       Eigen::Vector3d radial = soup_.vertices[ring[i]] - center;
@@ -477,7 +380,7 @@ class MeshAssembler {
   const InitialMeshOptions& options_;
   std::string source_;
   const PointIndex<float>& cloud_index_;
-  double spacing_;
+  CloudProbe probe_;
   QuadSoup soup_;
   std::map<std::pair<int, int>, Port> ports_;
   std::map<std::pair<int, int>, double> blend_length_;
@@ -505,35 +408,6 @@ double mean_edge_length(const QuadMesh& mesh) {
   double sum = 0;
   for (auto e : mesh.edges()) sum += mesh.calc_edge_length(e);
   return mesh.n_edges() ? sum / mesh.n_edges() : 0.0;
-}
-
-//! Where tubes meet at a junction, refinement can leave a face folded over
-//! its neighbour. Such places are relaxed (umbrella smoothing of the folded
-//! faces' vertices and their neighbours) until no fold is left.
-void relax_folds(QuadMesh& mesh) {
-  for (int round = 0; round < 50; ++round) {
-    std::set<int> region;
-    for (auto e : mesh.edges()) {
-      if (mesh.is_boundary(e) || !is_folded(mesh, e)) continue;
-      for (int side = 0; side < 2; ++side)
-        for (auto v : mesh.fv_range(mesh.face_handle(mesh.halfedge_handle(e, side))))
-          for (auto w : mesh.vv_range(v)) region.insert(w.idx());
-    }
-    if (region.empty()) return;
-    std::vector<std::pair<int, QuadMesh::Point>> moved;
-    for (int i : region) {
-      auto v = mesh.vertex_handle(i);
-      if (mesh.is_boundary(v)) continue;
-      QuadMesh::Point mean(0, 0, 0);
-      int count = 0;
-      for (auto w : mesh.vv_range(v)) {
-        mean += mesh.point(w);
-        ++count;
-      }
-      moved.emplace_back(i, 0.5 * mesh.point(v) + 0.5 * mean / count);
-    }
-    for (const auto& [i, p] : moved) mesh.set_point(mesh.vertex_handle(i), p);
-  }
 }
 
 int refinement_levels(const QuadMesh& mesh, const InitialMeshOptions& options) {
@@ -610,7 +484,7 @@ QuadMesh refined(const CoarseMesh& coarse, int levels) {
   QuadMesh mesh = coarse.result.mesh;
   refine_catmull_clark(mesh, levels);
   relax_folds(mesh);
-  coarse.assembler->keep_inside_cloud(mesh);
+  coarse.assembler->probe().keep_inside(mesh);
   relax_folds(mesh);  // moving back inside can fold a face in a tight crease
   return mesh;
 }

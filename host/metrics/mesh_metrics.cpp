@@ -2,133 +2,9 @@
 
 #include <numeric>
 
-#include <set>
-
-#include "core/point_index.h"
-#include "core/shared_math.h"
 #include "mesh/face_intersections.h"
-#include "skeleton/bone_assignment.h"
 
 namespace mcquad {
-
-std::vector<int> irregular_vertices(const QuadMesh& mesh) {
-  std::vector<int> out;
-  for (auto v : mesh.vertices()) {
-    if (mesh.is_isolated(v)) continue;
-    if (!is_regular_vertex(mesh, v)) out.push_back(v.idx());
-  }
-  return out;
-}
-
-std::vector<Eigen::Vector3d> boundary_loop_centres(const QuadMesh& mesh) {
-  std::vector<Eigen::Vector3d> centres;
-  std::set<int> seen;
-  for (auto h : mesh.halfedges()) {
-    if (!mesh.is_boundary(h) || seen.count(h.idx())) continue;
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    int corners = 0;
-    auto walk = h;
-    do {
-      seen.insert(walk.idx());
-      sum += point_of(mesh, mesh.to_vertex_handle(walk));
-      ++corners;
-      walk = mesh.next_halfedge_handle(walk);
-    } while (walk != h);
-    centres.emplace_back(sum / corners);
-  }
-  return centres;
-}
-
-MeshStatistics mesh_statistics(const QuadMesh& mesh) {
-  MeshStatistics s;
-  s.vertices = mesh.n_vertices();
-  s.faces = mesh.n_faces();
-  s.edges = mesh.n_edges();
-  for (auto f : mesh.faces()) s.quads += mesh.valence(f) == 4;
-  s.quad_fraction = s.faces ? double(s.quads) / s.faces : 0.0;
-  s.euler_characteristic = long(s.vertices) - long(s.edges) + long(s.faces);
-  s.irregular_vertices = irregular_vertices(mesh).size();
-  for (auto v : mesh.vertices()) s.non_manifold_vertices += !mesh.is_manifold(v);
-  s.boundary_loops = boundary_loop_centres(mesh).size();
-  std::vector<int> component(mesh.n_vertices(), -1);
-  for (auto start : mesh.vertices()) {
-    if (component[start.idx()] >= 0) continue;
-    std::vector<QuadMesh::VertexHandle> stack{start};
-    component[start.idx()] = int(s.components);
-    while (!stack.empty()) {
-      auto v = stack.back();
-      stack.pop_back();
-      for (auto w : mesh.vv_range(v)) {
-        if (component[w.idx()] < 0) {
-          component[w.idx()] = int(s.components);
-          stack.push_back(w);
-        }
-      }
-    }
-    ++s.components;
-  }
-  return s;
-}
-
-size_t inward_faces(const QuadMesh& mesh, const SkeletonGraph& skeleton) {
-  return inward_face_indices(mesh, skeleton).size();
-}
-
-std::vector<int> inward_face_indices(const QuadMesh& mesh, const SkeletonGraph& skeleton) {
-  std::vector<int> inward;
-  std::vector<double> distance(skeleton.edges.size());
-  std::vector<Eigen::Vector3d> nearest(skeleton.edges.size());
-  for (auto f : mesh.faces()) {
-    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    std::vector<Eigen::Vector3d> corners;
-    for (auto v : mesh.fv_range(f)) {
-      const auto& p = mesh.point(v);
-      corners.emplace_back(p[0], p[1], p[2]);
-      centroid += corners.back();
-    }
-    centroid /= double(corners.size());
-    Eigen::Vector3d normal = face_vector_area(mesh, f);
-    double closest = INFINITY;
-    for (size_t b = 0; b < skeleton.edges.size(); ++b) {
-      double t;
-      const auto& a = skeleton.positions[skeleton.edges[b][0]];
-      const auto& c = skeleton.positions[skeleton.edges[b][1]];
-      distance[b] = segment_distance(centroid, a, c, &t);
-      nearest[b] = a + t * (c - a);
-      closest = std::min(closest, distance[b]);
-    }
-    // "Out of the tube" is the gradient of a smooth minimum of the distances
-    // to the bones: away from the nearest bone along a tube, and out of the
-    // crotch where two bones are about equally near (where the nearest bone
-    // alone would flip between them).
-    double scale = std::max(0.3 * closest, 1e-12);
-    Eigen::Vector3d outward = Eigen::Vector3d::Zero();
-    for (size_t b = 0; b < skeleton.edges.size(); ++b) {
-      if (distance[b] > closest + 8 * scale || distance[b] <= 0) continue;
-      outward += std::exp(-(distance[b] - closest) / scale) * (centroid - nearest[b]) / distance[b];
-    }
-    if (normal.dot(outward) < 0) inward.push_back(f.idx());
-  }
-  return inward;
-}
-
-double winding_number(const QuadMesh& mesh, const Eigen::Vector3d& p) {
-  // Van Oosterom-Strackee solid angle of every triangle.
-  double total = 0;
-  for (auto f : mesh.faces()) {
-    std::vector<Eigen::Vector3d> c;
-    for (auto v : mesh.fv_range(f)) c.emplace_back(point_of(mesh, v) - p);
-    for (size_t k = 1; k + 1 < c.size(); ++k) {
-      const Eigen::Vector3d &a = c[0], &b = c[k], &d = c[k + 1];
-      double la = a.norm(), lb = b.norm(), ld = d.norm();
-      double numerator = a.dot(b.cross(d));
-      double denominator = la * lb * ld + a.dot(b) * ld + b.dot(d) * la + d.dot(a) * lb;
-      total += 2.0 * std::atan2(numerator, denominator);
-    }
-  }
-  return total / (4.0 * M_PI);
-}
-
 namespace {
 
 //! Indices of the `count` largest values, largest first.
@@ -143,29 +19,6 @@ std::vector<size_t> largest_first(const std::vector<double>& values, size_t coun
 }
 
 }  // namespace
-
-std::vector<int> faces_against_normals(const QuadMesh& mesh, const OrientedSample& oriented) {
-  PointIndex<float> index(oriented.points);
-  std::vector<char> against(mesh.n_faces(), 0);
-#pragma omp parallel for schedule(static)
-  for (long f = 0; f < long(mesh.n_faces()); ++f) {
-    Eigen::Vector3d normal = face_vector_area(mesh, mesh.face_handle(int(f)));
-    long nearest = index.nearest(face_centroid(mesh, int(f)).cast<float>()).first;
-    if (nearest >= 0) against[size_t(f)] = normal.dot(oriented.normals[size_t(nearest)].cast<double>()) < 0;
-  }
-  std::vector<int> faces;
-  for (size_t f = 0; f < against.size(); ++f)
-    if (against[f]) faces.push_back(int(f));
-  return faces;
-}
-
-double area_fraction(const QuadMesh& mesh, const std::vector<int>& faces) {
-  auto area = [&](QuadMesh::FaceHandle f) { return 0.5 * face_vector_area(mesh, f).norm(); };
-  double total = 0, part = 0;
-  for (auto f : mesh.faces()) total += area(f);
-  for (int f : faces) part += area(mesh.face_handle(f));
-  return total > 0 ? part / total : 0.0;
-}
 
 QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, const CellTree& cells,
                                const SkeletonGraph* skeleton, const OrientedSample* oriented) {
@@ -225,18 +78,6 @@ QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, co
   for (size_t f : largest_first(badness, QualityMetrics::kMaxSites))
     if (badness[f] >= 0) m.worst_quad_sites.push_back(face_centroid(mesh, int(f)));
   return m;
-}
-
-nlohmann::json to_json(const MeshStatistics& s) {
-  return {{"vertices", s.vertices},
-          {"faces", s.faces},
-          {"edges", s.edges},
-          {"quad_fraction", s.quad_fraction},
-          {"euler_characteristic", s.euler_characteristic},
-          {"boundary_loops", s.boundary_loops},
-          {"components", s.components},
-          {"irregular_vertices", s.irregular_vertices},
-          {"non_manifold_vertices", s.non_manifold_vertices}};
 }
 
 nlohmann::json to_json(const QualityMetrics& m) {

@@ -9,29 +9,13 @@
 #include "core/quad_mesh.h"
 #include "mesh/folds.h"
 #include "mesh/quad_shape.h"
+#include "metrics/inward_faces.h"
+#include "metrics/mesh_statistics.h"
 #include "metrics/surface_distance.h"
+#include "metrics/winding_number.h"
 #include "skeleton/skeleton_graph.h"
 
 namespace mcquad {
-
-//! Topology of a mesh.
-struct MeshStatistics {
-  size_t vertices = 0, faces = 0, quads = 0, edges = 0;
-  size_t boundary_loops = 0;
-  size_t components = 0;
-  long euler_characteristic = 0;
-  double quad_fraction = 0;
-  size_t irregular_vertices = 0;  //!< valence != 4 inside, != 3 on a boundary
-  size_t non_manifold_vertices = 0;
-};
-
-MeshStatistics mesh_statistics(const QuadMesh& mesh);
-
-//! The centre (mean of the corners) of each boundary loop of the mesh.
-std::vector<Eigen::Vector3d> boundary_loop_centres(const QuadMesh& mesh);
-
-//! Indices of irregular vertices (valence != 4 inside, != 3 on a boundary).
-std::vector<int> irregular_vertices(const QuadMesh& mesh);
 
 //! Everything `mcquad metrics` and fit's report state about a mesh.
 struct QualityMetrics {
@@ -66,27 +50,6 @@ struct QualityMetrics {
 QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, const CellTree& cells,
                                const SkeletonGraph* skeleton, const OrientedSample* oriented = nullptr);
 
-//! Faces whose normal points against the scan's normal at the oriented
-//! point nearest their centroid.
-std::vector<int> faces_against_normals(const QuadMesh& mesh, const OrientedSample& oriented);
-
-//! The share of the mesh's area that the given faces cover.
-double area_fraction(const QuadMesh& mesh, const std::vector<int>& faces);
-
-//! Faces whose normal points into the tube: toward the skeleton instead of
-//! away (away from a smooth minimum of the distances to the bones, so a
-//! crotch between bones counts its faces right). Approximate where the mesh
-//! is far from its bones, e.g. around a junction the mesh builder moved.
-size_t inward_faces(const QuadMesh& mesh, const SkeletonGraph& skeleton);
-//! The same faces, by index.
-std::vector<int> inward_face_indices(const QuadMesh& mesh, const SkeletonGraph& skeleton);
-
-//! Generalized winding number of the mesh at p (quads split in two
-//! triangles): about 1 inside a closed, outward-oriented mesh, 0 outside,
-//! -1 inside one oriented inward.
-double winding_number(const QuadMesh& mesh, const Eigen::Vector3d& p);
-
-nlohmann::json to_json(const MeshStatistics& statistics);
 nlohmann::json to_json(const QualityMetrics& metrics);
 
 }  // namespace mcquad

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/point_index.h"
 #include "core/shared_math.h"
 #include "mesh/face_intersections.h"
+#include "mesh/triangle_tree.h"
 
 namespace mcquad {
 
@@ -45,20 +45,20 @@ size_t cloud_sample_stride(size_t points, size_t max_points) {
 
 std::vector<double> cloud_to_mesh_distances(const QuadMesh& mesh, const PointCloud& cloud, size_t max_points) {
   MeshTriangles triangles = triangulate(mesh);
-  std::vector<Eigen::Vector3f> centroids(triangles.size());
-  for (size_t t = 0; t < triangles.size(); ++t) centroids[t] = triangles.centroid(t).cast<float>();
-  PointIndex<float> index(centroids);
+  TriangleTree tree(triangles);
   size_t stride = cloud_sample_stride(cloud.size(), max_points);
   std::vector<double> out((cloud.size() + stride - 1) / stride);
-#pragma omp parallel for schedule(static)
-  for (long i = 0; i < long(out.size()); ++i) {
-    const Eigen::Vector3f& q = cloud.points[size_t(i) * stride];
-    Eigen::Vector3d p = q.cast<double>();
-    double best = INFINITY;
-    for (size_t t : index.k_nearest(q, 8))
-      best = std::min(
-          best, point_triangle_distance(p, triangles.corner(t, 0), triangles.corner(t, 1), triangles.corner(t, 2)));
-    out[size_t(i)] = best;
+  // Each thread takes a run of points, near each other where the cloud is
+  // sorted spatially (as fit sorts it): the last answer bounds the next search.
+#pragma omp parallel
+  {
+    long hint = -1;
+#pragma omp for schedule(static)
+    for (long i = 0; i < long(out.size()); ++i) {
+      auto [distance, triangle] = tree.nearest(cloud.points[size_t(i) * stride].cast<double>(), hint);
+      out[size_t(i)] = distance;
+      hint = triangle;
+    }
   }
   return out;
 }

@@ -24,8 +24,8 @@ nlohmann::json to_json(const DistanceSummary& distances);
 std::vector<double> mesh_to_cloud_distances(const QuadMesh& mesh, const CellTree& cells);
 
 //! Distance of every cloud point to the mesh surface (quads split into two
-//! triangles; the exact point-triangle distance over the triangles whose
-//! centroids are nearest). With `max_points` > 0, every k-th point only, so
+//! triangles), exact: the nearest triangle from one TriangleTree
+//! (mesh/triangle_tree.h). With `max_points` > 0, every k-th point only, so
 //! that at most that many are measured (huge clouds).
 std::vector<double> cloud_to_mesh_distances(const QuadMesh& mesh, const PointCloud& cloud, size_t max_points = 0);
 

@@ -3,6 +3,7 @@
 #include <random>
 
 #include "cells/cell_tree.h"
+#include "helpers.h"
 #include "mesh/face_intersections.h"
 #include "metrics/mesh_metrics.h"
 
@@ -15,20 +16,12 @@ QuadMesh crumpled_sheets(int n, unsigned seed) {
   std::mt19937 random(seed);
   std::uniform_real_distribution<double> jitter(-0.3, 0.3);
   QuadMesh mesh;
-  for (int sheet = 0; sheet < 2; ++sheet) {
-    std::vector<QuadMesh::VertexHandle> v;
-    for (int i = 0; i <= n; ++i)
-      for (int j = 0; j <= n; ++j) {
-        double x = i, y = j, z = jitter(random);
-        if (sheet == 1) z += 0.2 * (x - n / 2.0);  // tilted through the first sheet
-        v.push_back(mesh.add_vertex(QuadMesh::Point(x + 0.37 * sheet, y + 0.21 * sheet, z)));
-      }
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j) {
-        auto at = [&](int a, int b) { return v[size_t(a * (n + 1) + b)]; };
-        mesh.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
-      }
-  }
+  for (int sheet = 0; sheet < 2; ++sheet)
+    test::add_quad_grid(mesh, n, [&](int i, int j) {
+      double x = i, y = j, z = jitter(random);
+      if (sheet == 1) z += 0.2 * (x - n / 2.0);  // tilted through the first sheet
+      return QuadMesh::Point(x + 0.37 * sheet, y + 0.21 * sheet, z);
+    });
   return mesh;
 }
 
@@ -51,7 +44,7 @@ std::vector<std::pair<int, int>> brute_force(const MeshTriangles& t, const std::
   return pairs;
 }
 
-TEST(FaceIntersections, GridMatchesBruteForce) {
+TEST(FaceIntersections, BroadPhaseMatchesBruteForce) {
   for (unsigned seed : {1u, 2u, 3u}) {
     MeshTriangles triangles = triangulate(crumpled_sheets(12, seed));
     std::vector<std::pair<int, int>> expected = brute_force(triangles);

@@ -1,0 +1,175 @@
+#include "mesh/triangle_tree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace mcquad {
+
+namespace {
+
+//! The bits of a 10-bit integer spread to every third bit.
+uint32_t spread_bits(uint32_t x) {
+  x = (x | (x << 16)) & 0x030000FFu;
+  x = (x | (x << 8)) & 0x0300F00Fu;
+  x = (x | (x << 4)) & 0x030C30C3u;
+  x = (x | (x << 2)) & 0x09249249u;
+  return x;
+}
+
+}  // namespace
+
+TriangleTree::TriangleTree(const MeshTriangles& triangles) : triangles_(triangles) {
+  const size_t n = triangles.size();
+  boxes_.resize(n);
+  Box all;
+  std::vector<Eigen::Vector3f> centroids(n);
+  for (size_t t = 0; t < n; ++t) {
+    Eigen::Vector3d lo = triangles.corner(t, 0).cwiseMin(triangles.corner(t, 1)).cwiseMin(triangles.corner(t, 2));
+    Eigen::Vector3d hi = triangles.corner(t, 0).cwiseMax(triangles.corner(t, 1)).cwiseMax(triangles.corner(t, 2));
+    Eigen::Vector3f low, high;
+    for (int k = 0; k < 3; ++k) {
+      low[k] = std::nextafter(float(lo[k]), -INFINITY);
+      high[k] = std::nextafter(float(hi[k]), INFINITY);
+    }
+    boxes_[t] = Box(low, high);
+    centroids[t] = triangles.centroid(t).cast<float>();
+    all.extend(centroids[t]);
+  }
+  if (n == 0) return;
+  // Sorted as plain integers, code above index: the same order as by code,
+  // ties by index, at a fraction of an indirect comparison's cost.
+  std::vector<uint64_t> keys(n);
+  const Eigen::Array3f scale = 1023.0f / all.sizes().array().max(1e-30f);
+  for (size_t t = 0; t < n; ++t) {
+    Eigen::Array3f cell = ((centroids[t] - all.min()).array() * scale).min(1023.0f).max(0.0f);
+    uint64_t code = spread_bits(uint32_t(cell.x())) << 2 | spread_bits(uint32_t(cell.y())) << 1 |
+                    spread_bits(uint32_t(cell.z()));
+    keys[t] = code << 32 | t;
+  }
+  std::sort(keys.begin(), keys.end());
+  order_.resize(n);
+  for (size_t k = 0; k < n; ++k) order_[k] = int(keys[k] & 0xffffffffu);
+  nodes_.reserve(2 * (n / kLeafSize + 1));
+  nodes_.emplace_back();
+  build(0, 0, int(n));
+  fit_boxes(0);
+}
+
+void TriangleTree::build(int node, int begin, int end) {
+  if (end - begin <= kLeafSize) {
+    nodes_[size_t(node)].first = begin;
+    nodes_[size_t(node)].count = end - begin;
+    return;
+  }
+  int children = int(nodes_.size());
+  nodes_[size_t(node)].first = children;
+  nodes_[size_t(node)].count = 0;
+  nodes_.emplace_back();
+  nodes_.emplace_back();
+  int middle = begin + (end - begin) / 2;
+  build(children, begin, middle);
+  build(children + 1, middle, end);
+}
+
+void TriangleTree::fit_boxes(int node) {
+  Node& n = nodes_[size_t(node)];
+  Box box;
+  if (n.count > 0) {
+    for (int k = n.first; k < n.first + n.count; ++k) box.extend(boxes_[size_t(order_[size_t(k)])]);
+  } else {
+    fit_boxes(n.first);
+    fit_boxes(n.first + 1);
+    box = nodes_[size_t(n.first)].box.merged(nodes_[size_t(n.first + 1)].box);
+  }
+  nodes_[size_t(node)].box = box;
+}
+
+std::vector<char> TriangleTree::wanted_nodes(const std::vector<char>* wanted) const {
+  std::vector<char> has(nodes_.size(), wanted ? 0 : 1);
+  if (!wanted) return has;
+  // Children come after their parent, so one backward sweep sees them first.
+  for (size_t k = nodes_.size(); k-- > 0;) {
+    const Node& node = nodes_[k];
+    if (node.count > 0) {
+      for (int i = node.first; i < node.first + node.count; ++i) has[k] |= (*wanted)[size_t(order_[size_t(i)])] != 0;
+    } else {
+      has[k] = has[size_t(node.first)] | has[size_t(node.first + 1)];
+    }
+  }
+  return has;
+}
+
+std::vector<std::pair<int, int>> TriangleTree::split_pairs(const std::vector<char>& has_wanted, size_t count) const {
+  // Breadth first: a pair splits into the pairs of its children, as the
+  // traversal would, until there are enough or only leaves are left.
+  std::vector<std::pair<int, int>> pairs{{0, 0}}, next;
+  for (bool split = true; split && pairs.size() < count;) {
+    split = false;
+    next.clear();
+    for (auto [a, b] : pairs) {
+      const Node& na = nodes_[size_t(a)];
+      const Node& nb = nodes_[size_t(b)];
+      if ((!has_wanted[size_t(a)] && !has_wanted[size_t(b)]) || (a != b && !na.box.intersects(nb.box))) continue;
+      if (a == b && na.count == 0) {
+        next.insert(next.end(), {{na.first, na.first}, {na.first + 1, na.first + 1}, {na.first, na.first + 1}});
+        split = true;
+      } else if (a != b && na.count == 0) {
+        next.insert(next.end(), {{na.first, b}, {na.first + 1, b}});
+        split = true;
+      } else if (a != b && nb.count == 0) {
+        next.insert(next.end(), {{a, nb.first}, {a, nb.first + 1}});
+        split = true;
+      } else {
+        next.emplace_back(a, b);
+      }
+    }
+    pairs.swap(next);
+  }
+  return pairs;
+}
+
+std::pair<double, long> TriangleTree::nearest(const Eigen::Vector3d& p, long hint) const {
+  double best = INFINITY;
+  long best_triangle = -1;
+  if (nodes_.empty()) return {best, best_triangle};
+  if (hint >= 0 && size_t(hint) < size()) {
+    size_t t = size_t(hint);
+    best = point_triangle_distance(p, triangles_.corner(t, 0), triangles_.corner(t, 1), triangles_.corner(t, 2));
+    best_triangle = hint;
+  }
+  const Eigen::Vector3f q = p.cast<float>();
+  // Float boxes are rounded outward, but q is rounded too: a box's distance
+  // may come out a float's rounding over the truth, hence the slack.
+  const auto box_distance = [&](const Box& box) {
+    return std::sqrt(double(box.squaredExteriorDistance(q))) * (1 - 1e-6) - 1e-6 * q.norm();
+  };
+  std::pair<double, int> stack[128];
+  int top = 0;
+  stack[top++] = {0.0, 0};
+  while (top > 0) {
+    auto [distance, index] = stack[--top];
+    if (distance >= best) continue;
+    const Node& node = nodes_[size_t(index)];
+    if (node.count > 0) {
+      for (int k = node.first; k < node.first + node.count; ++k) {
+        size_t t = size_t(order_[size_t(k)]);
+        double d = point_triangle_distance(p, triangles_.corner(t, 0), triangles_.corner(t, 1), triangles_.corner(t, 2));
+        if (d < best) best = d, best_triangle = long(t);
+      }
+      continue;
+    }
+    // The nearer child last, so it is taken first.
+    double d0 = box_distance(nodes_[size_t(node.first)].box), d1 = box_distance(nodes_[size_t(node.first + 1)].box);
+    if (d0 < d1) {
+      stack[top++] = {d1, node.first + 1};
+      stack[top++] = {d0, node.first};
+    } else {
+      stack[top++] = {d0, node.first};
+      stack[top++] = {d1, node.first + 1};
+    }
+  }
+  return {best, best_triangle};
+}
+
+}  // namespace mcquad
