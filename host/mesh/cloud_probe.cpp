@@ -10,7 +10,8 @@
 
 namespace mcquad {
 
-double CloudProbe::distance_along(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double enough) const {
+double CloudProbe::distance_along(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                                  double enough) const {
   const double near = 3.0 * spacing_, least_step = std::max(0.5 * spacing_, 1e-3 * enough);
   double t = 0;
   for (int step = 0; step < 512 && t < enough; ++step) {
@@ -25,7 +26,6 @@ double CloudProbe::distance_along(const Eigen::Vector3d& origin, const Eigen::Ve
   return t;
 }
 
-
 double CloudProbe::sample_spacing() const {
   std::vector<double> gaps;
   size_t stride = std::max<size_t>(1, cloud_.size() / 500);
@@ -37,7 +37,6 @@ double CloudProbe::sample_spacing() const {
   std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
   return gaps[gaps.size() / 2];
 }
-
 
 void CloudProbe::keep_inside(QuadMesh& mesh) const {
   MeshArrays arrays = flatten_mesh(mesh);

@@ -43,8 +43,8 @@ TriangleTree::TriangleTree(const MeshTriangles& triangles) : triangles_(triangle
   const Eigen::Array3f scale = 1023.0f / all.sizes().array().max(1e-30f);
   for (size_t t = 0; t < n; ++t) {
     Eigen::Array3f cell = ((centroids[t] - all.min()).array() * scale).min(1023.0f).max(0.0f);
-    uint64_t code = spread_bits(uint32_t(cell.x())) << 2 | spread_bits(uint32_t(cell.y())) << 1 |
-                    spread_bits(uint32_t(cell.z()));
+    uint64_t code =
+        spread_bits(uint32_t(cell.x())) << 2 | spread_bits(uint32_t(cell.y())) << 1 | spread_bits(uint32_t(cell.z()));
     keys[t] = code << 32 | t;
   }
   std::sort(keys.begin(), keys.end());
@@ -154,7 +154,8 @@ std::pair<double, long> TriangleTree::nearest(const Eigen::Vector3d& p, long hin
     if (node.count > 0) {
       for (int k = node.first; k < node.first + node.count; ++k) {
         size_t t = size_t(order_[size_t(k)]);
-        double d = point_triangle_distance(p, triangles_.corner(t, 0), triangles_.corner(t, 1), triangles_.corner(t, 2));
+        double d =
+            point_triangle_distance(p, triangles_.corner(t, 0), triangles_.corner(t, 1), triangles_.corner(t, 2));
         if (d < best) best = d, best_triangle = long(t);
       }
       continue;
