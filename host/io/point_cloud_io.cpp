@@ -39,7 +39,7 @@ PointCloud read_xyz(const std::string& path) {
       Eigen::Vector3f n;
       bool ok = true;
       for (int k = 0; k < 3; ++k) {
-        double v;
+        double v = 0;
         ok = ok && parse_number(fields[3 + k], v);
         n[k] = float(v);
       }
