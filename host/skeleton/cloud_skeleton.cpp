@@ -437,6 +437,27 @@ void place_junctions(Extraction& x, std::vector<Chain>& chains) {
     return farthest;
   };
 
+  // One point for many axes: all within half a radius of it, inside the
+  // body. A hub of five limbs or more may have one thin limb whose axis,
+  // fitted where it leaves the hub, is off by more; it may miss by up to a
+  // radius when the others meet without it.
+  auto axes_meet_at_one_point = [&](std::vector<Line> lines, const Eigen::Vector3d& start, double r) {
+    Eigen::Vector3d meet = nearest_to_lines(lines, start);
+    if (farthest_axis(lines, meet) < 0.5 * r) return x.inscribed_radius(meet) >= 0.5 * r;
+    if (lines.size() < 5) return false;
+    auto distance = [&](const Line& line) {
+      Eigen::Vector3d d = meet - line.point;
+      return (d - d.dot(line.direction) * line.direction).norm();
+    };
+    auto worst = std::max_element(lines.begin(), lines.end(),
+                                  [&](const Line& p, const Line& q) { return distance(p) < distance(q); });
+    Line outlier = *worst;
+    lines.erase(worst);
+    meet = nearest_to_lines(lines, start);
+    return farthest_axis(lines, meet) < 0.5 * r && farthest_axis({outlier}, meet) < r &&
+           x.inscribed_radius(meet) >= 0.5 * r;
+  };
+
   UnionFind regions(n);
   std::vector<double> radius(n, 0);
   for (size_t v = 0; v < n; ++v) {
@@ -462,6 +483,37 @@ void place_junctions(Extraction& x, std::vector<Chain>& chains) {
         lines.size() >= 2 && farthest_axis(lines, meet) < 0.5 * r && (meet - middle).norm() < 0.5 * length + r;
     if (length < 0.5 * r || one_point) regions.join(size_t(a), size_t(b));
   }
+  // Then whole regions: two regions a link apart are one when the axes of
+  // all their outer limbs meet at one point. A hub of many limbs splits into
+  // several junction nodes, and a pair of them sees only its own limbs; arms
+  // close in angle part late, so their link may run up to eight radii.
+  auto members_of = [&](size_t a, size_t b) {
+    std::set<int> members;
+    for (size_t v = 0; v < n; ++v)
+      if (x.work.alive[v] && is_junction(int(v)) &&
+          (regions.find(v) == regions.find(a) || regions.find(v) == regions.find(b)))
+        members.insert(int(v));
+    return members;
+  };
+  for (int pass = 0; pass < 2; ++pass)
+    for (size_t c = 0; c < chains.size(); ++c) {
+      int a = chains[c].nodes.front(), b = chains[c].nodes.back();
+      if (a == b || !is_junction(a) || !is_junction(b) || regions.find(size_t(a)) == regions.find(size_t(b))) continue;
+      std::set<int> members = members_of(size_t(a), size_t(b));
+      double r = 0;
+      Eigen::Vector3d middle = Eigen::Vector3d::Zero();
+      for (int v : members) {
+        r = std::max(r, radius[size_t(v)]);
+        middle += x.position[size_t(v)] / double(members.size());
+      }
+      if (chain_length(x, chains[c].nodes) >= 8 * r) continue;
+      std::set<size_t> links;
+      for (size_t k = 0; k < chains.size(); ++k)
+        if (members.count(chains[k].nodes.front()) && members.count(chains[k].nodes.back())) links.insert(k);
+      std::vector<Line> lines = limb_axes(limbs_of(members, links), r);
+      if (lines.size() < 3) continue;
+      if (axes_meet_at_one_point(lines, middle, r)) regions.join(size_t(a), size_t(b));
+    }
   std::map<int, std::set<int>> clusters;
   for (size_t v = 0; v < n; ++v)
     if (x.work.alive[v] && is_junction(int(v))) clusters[int(regions.find(v))].insert(int(v));
