@@ -19,6 +19,22 @@ size_t folded_edges(const QuadMesh& mesh) {
   return folded;
 }
 
+void relax_vertices(QuadMesh& mesh, const std::set<int>& region) {
+  std::vector<std::pair<int, QuadMesh::Point>> moved;
+  for (int i : region) {
+    auto v = mesh.vertex_handle(i);
+    if (mesh.is_boundary(v)) continue;
+    QuadMesh::Point mean(0, 0, 0);
+    int count = 0;
+    for (auto w : mesh.vv_range(v)) {
+      mean += mesh.point(w);
+      ++count;
+    }
+    moved.emplace_back(i, 0.5 * mesh.point(v) + 0.5 * mean / count);
+  }
+  for (const auto& [i, p] : moved) mesh.set_point(mesh.vertex_handle(i), p);
+}
+
 void relax_folds(QuadMesh& mesh) {
   for (int round = 0; round < 50; ++round) {
     std::set<int> region;
@@ -29,19 +45,7 @@ void relax_folds(QuadMesh& mesh) {
           for (auto w : mesh.vv_range(v)) region.insert(w.idx());
     }
     if (region.empty()) return;
-    std::vector<std::pair<int, QuadMesh::Point>> moved;
-    for (int i : region) {
-      auto v = mesh.vertex_handle(i);
-      if (mesh.is_boundary(v)) continue;
-      QuadMesh::Point mean(0, 0, 0);
-      int count = 0;
-      for (auto w : mesh.vv_range(v)) {
-        mean += mesh.point(w);
-        ++count;
-      }
-      moved.emplace_back(i, 0.5 * mesh.point(v) + 0.5 * mean / count);
-    }
-    for (const auto& [i, p] : moved) mesh.set_point(mesh.vertex_handle(i), p);
+    relax_vertices(mesh, region);
   }
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <set>
 
 #include "core/quad_mesh.h"
 
@@ -19,6 +20,10 @@ bool is_folded(const QuadMesh& mesh, QuadMesh::EdgeHandle edge);
 
 //! The edges whose faces fold over each other.
 size_t folded_edges(const QuadMesh& mesh);
+
+//! One round of umbrella smoothing: every interior vertex of `region` moves
+//! halfway to its neighbours' mean (all from the positions before the round).
+void relax_vertices(QuadMesh& mesh, const std::set<int>& region);
 
 //! Where tubes meet at a junction, refinement can leave a face folded over
 //! its neighbour. Such places are relaxed (umbrella smoothing of the folded

@@ -9,6 +9,7 @@
 #include "core/point_index.h"
 #include "core/shared_math.h"
 #include "mesh/cloud_probe.h"
+#include "mesh/crossing_relaxation.h"
 #include "mesh/cube_block.h"
 #include "mesh/face_intersections.h"
 #include "mesh/folds.h"
@@ -480,12 +481,31 @@ InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment&
 
 namespace {
 
+//! Folds and crossing faces relaxed away, in turns, since smoothing one can
+//! bring back the other (until crossings are left that smoothing cannot part).
+void untangle(QuadMesh& mesh) {
+  for (int turn = 0; turn < 4; ++turn) {
+    relax_folds(mesh);
+    if (relax_crossings(mesh) > 0 || folded_edges(mesh) == 0) return;
+  }
+}
+
 QuadMesh refined(const CoarseMesh& coarse, int levels) {
   QuadMesh mesh = coarse.result.mesh;
-  refine_catmull_clark(mesh, levels);
-  relax_folds(mesh);
+  // Level by level: a crossing is smoothed away at the coarsest level it
+  // appears, where a few rounds move whole faces, not slivers of them.
+  for (int level = 0; level < levels; ++level) {
+    refine_catmull_clark(mesh, 1);
+    untangle(mesh);
+  }
   coarse.assembler->probe().keep_inside(mesh);
-  relax_folds(mesh);  // moving back inside can fold a face in a tight crease
+  // Moving back inside can fold a face in a tight crease. The unrefined
+  // mesh (8 vertices round a tube) is only relaxed where it folds:
+  // smoothing a crossing there would shrink whole tubes onto their bones.
+  if (levels == 0)
+    relax_folds(mesh);
+  else
+    untangle(mesh);
   return mesh;
 }
 

@@ -1,0 +1,40 @@
+#include "mesh/crossing_relaxation.h"
+
+#include <cstdint>
+#include <set>
+
+#include "mesh/face_intersections.h"
+#include "mesh/folds.h"
+
+namespace mcquad {
+
+constexpr int kRoundsWithoutProgress = 20;
+
+size_t relax_crossings(QuadMesh& mesh, int rounds) {
+  size_t fewest = SIZE_MAX;
+  int since_fewest = 0;
+  for (int round = 0;; ++round) {
+    auto pairs = intersecting_face_pairs(mesh);
+    if (pairs.size() < fewest) {
+      fewest = pairs.size();
+      since_fewest = 0;
+    }
+    // Where tubes pass through each other, smoothing does not part them.
+    if (pairs.empty() || round == rounds || ++since_fewest > kRoundsWithoutProgress) return pairs.size();
+    std::set<int> region;
+    for (const auto& [a, b] : pairs)
+      for (int face : {a, b})
+        for (auto v : mesh.fv_range(mesh.face_handle(face))) region.insert(v.idx());
+    // Smoothing only the crossing faces' corners pulls them into their
+    // neighbours; their rings give way with them.
+    for (int ring = 0; ring < 1 + std::min(5, round / 10); ++ring) {
+      std::set<int> grown = region;
+      for (int i : region)
+        for (auto w : mesh.vv_range(mesh.vertex_handle(i))) grown.insert(w.idx());
+      region.swap(grown);
+    }
+    relax_vertices(mesh, region);
+  }
+}
+
+}  // namespace mcquad
