@@ -13,8 +13,19 @@ namespace mcquad {
 //! model units and relative to the local tube radius (the nearest capsule's).
 struct TrueSurfaceDistance {
   DistanceSummary absolute, relative;
+  //! The share of the mesh's area whose faces point against the true
+  //! surface's outward normal near them (issue 20: turned-over faces in the
+  //! creases where tubes meet).
+  double inward_area_fraction = 0;
 };
 TrueSurfaceDistance measure_true_surface_distance(const QuadMesh& mesh, const TubeSurface& surface);
+
+//! The share of the mesh's area facing inward against the true surface: a
+//! face faces inward when its normal points against the gradient of the
+//! union's signed distance at its centre, which is the outward normal at the
+//! nearest point of the surface (inside, where capsules overlap, the normal
+//! of the nearest capsule's wall: signed_distance is a lower bound there).
+double inward_area_fraction(const QuadMesh& mesh, const TubeSurface& surface);
 
 //! Distances of the cloud points to the mesh relative to their local tube
 //! radius (the nearest capsule's): issue 6's coverage, "95 % of the points

@@ -1,0 +1,32 @@
+#include <gtest/gtest.h>
+
+#include "generate/true_surface_distance.h"
+#include "helpers.h"
+
+namespace mcquad {
+namespace {
+
+//! The true surface's inward area: a box round a capsule faces out (0), the
+//! box turned inside out faces in (1), one face turned over is a sixth.
+TEST(TrueSurfaceDistance, InwardAreaIsTheShareOfFacesAgainstTheTrueNormal) {
+  TubeSurface surface;
+  surface.add(Capsule{Eigen::Vector3d(0.5, 0.5, 0.2), Eigen::Vector3d(0.5, 0.5, 0.8), 0.3});
+  EXPECT_DOUBLE_EQ(inward_area_fraction(test::unit_cube(), surface), 0.0);
+  EXPECT_DOUBLE_EQ(inward_area_fraction(test::unit_cube(true), surface), 1.0);
+  // The box's faces apart (OpenMesh joins no faces of opposite turns), the
+  // top (+z) one with its corners in the opposite order.
+  const QuadMesh cube = test::unit_cube();
+  QuadMesh one_turned;
+  for (auto f : cube.faces()) {
+    std::vector<QuadMesh::VertexHandle> corners;
+    Eigen::Vector3d centre = face_centroid(cube, f.idx());
+    for (auto v : cube.fv_range(f)) corners.push_back(one_turned.add_vertex(cube.point(v)));
+    if (centre.z() > 0.9) std::reverse(corners.begin(), corners.end());
+    one_turned.add_face(corners);
+  }
+  EXPECT_NEAR(inward_area_fraction(one_turned, surface), 1.0 / 6.0, 1e-12);
+  EXPECT_DOUBLE_EQ(measure_true_surface_distance(test::unit_cube(true), surface).inward_area_fraction, 1.0);
+}
+
+}  // namespace
+}  // namespace mcquad
