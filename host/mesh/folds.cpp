@@ -1,5 +1,6 @@
 #include "mesh/folds.h"
 
+#include <algorithm>
 #include <set>
 #include <utility>
 #include <vector>
@@ -35,7 +36,7 @@ void relax_vertices(QuadMesh& mesh, const std::set<int>& region) {
   for (const auto& [i, p] : moved) mesh.set_point(mesh.vertex_handle(i), p);
 }
 
-void relax_folds(QuadMesh& mesh) {
+void relax_folds(QuadMesh& mesh, int widening_rings) {
   for (int round = 0; round < 50; ++round) {
     std::set<int> region;
     for (auto e : mesh.edges()) {
@@ -45,6 +46,12 @@ void relax_folds(QuadMesh& mesh) {
           for (auto w : mesh.vv_range(v)) region.insert(w.idx());
     }
     if (region.empty()) return;
+    for (int ring = 0; ring < std::min(widening_rings, round / 10); ++ring) {
+      std::set<int> grown = region;
+      for (int i : region)
+        for (auto w : mesh.vv_range(mesh.vertex_handle(i))) grown.insert(w.idx());
+      region.swap(grown);
+    }
     relax_vertices(mesh, region);
   }
 }

@@ -28,7 +28,10 @@ void relax_vertices(QuadMesh& mesh, const std::set<int>& region);
 //! Where tubes meet at a junction, refinement can leave a face folded over
 //! its neighbour. Such places are relaxed (umbrella smoothing of the folded
 //! faces' vertices and their neighbours) until no fold is left, for at most
-//! 50 rounds.
-void relax_folds(QuadMesh& mesh);
+//! 50 rounds. A fold that ten rounds do not undo takes one ring more with
+//! it, up to `widening_rings` more: on a refined mesh that frees folds
+//! wedged between neighbours, while on the unrefined one (8 vertices round a
+//! tube) a wider ring would turn whole tubes over.
+void relax_folds(QuadMesh& mesh, int widening_rings = 0);
 
 }  // namespace mcquad

@@ -485,7 +485,7 @@ namespace {
 //! bring back the other (until crossings are left that smoothing cannot part).
 void untangle(QuadMesh& mesh) {
   for (int turn = 0; turn < 4; ++turn) {
-    relax_folds(mesh);
+    relax_folds(mesh, 3);
     if (relax_crossings(mesh) > 0 || folded_edges(mesh) == 0) return;
   }
 }
@@ -494,9 +494,13 @@ QuadMesh refined(const CoarseMesh& coarse, int levels) {
   QuadMesh mesh = coarse.result.mesh;
   // Level by level: a crossing is smoothed away at the coarsest level it
   // appears, where a few rounds move whole faces, not slivers of them.
+  // The last level's crossings are looked for once, after the move inside.
   for (int level = 0; level < levels; ++level) {
     refine_catmull_clark(mesh, 1);
-    untangle(mesh);
+    if (level + 1 < levels)
+      untangle(mesh);
+    else
+      relax_folds(mesh);
   }
   coarse.assembler->probe().keep_inside(mesh);
   // Moving back inside can fold a face in a tight crease. The unrefined
