@@ -22,6 +22,13 @@ struct HardCase {
   //! resolution (docs/HARD_CASES.md says why); it is one level finer
   //! (Issue6.FifteenDegreeYIsCoveredOneLevelFiner).
   bool covered;
+  //! Whether at most 0.1 % of the mesh's area faces against the true
+  //! surface (issue 20's bound). Not yet in the 30-degree Y's crotch
+  //! (0.53 %), where the thin branch leaves its trunk (2.1 %), at the T's
+  //! creases with outliers (0.50 %) or holes (0.31 %), nor under 10 % noise
+  //! (0.17 % here, 0.00 % through `mcquad fit`, whose points are sorted and
+  //! so sampled differently): docs/HARD_CASES.md.
+  bool faces_out = true;
 };
 
 //! gtest prints the case by its label rather than its bytes.
@@ -38,17 +45,22 @@ ShapeOptions with(double angle = 60, double noise = 0, double outliers = 0, doub
 }
 
 const HardCase kCases[] = {
-    {"y_fork_30", "y-fork", with(30), true},          {"y_fork_15", "y-fork", with(15), false},
-    {"tight_knot", "tight-knot", with(), true},       {"parallel_tubes", "parallel-tubes", with(), true},
-    {"thin_branch", "thin-branch", with(), true},     {"noise_2", "t-shape", with(60, 0.02), true},
-    {"noise_5", "t-shape", with(60, 0.05), true},     {"noise_10", "t-shape", with(60, 0.10), true},
-    {"outliers", "t-shape", with(60, 0, 0.01), true}, {"density_10", "t-shape", with(60, 0, 0, 10), true},
-    {"holes", "t-shape", with(60, 0, 0, 1, 3), true},
+    {"y_fork_30", "y-fork", with(30), true, false},
+    {"y_fork_15", "y-fork", with(15), false},
+    {"tight_knot", "tight-knot", with(), true},
+    {"parallel_tubes", "parallel-tubes", with(), true},
+    {"thin_branch", "thin-branch", with(), true, false},
+    {"noise_2", "t-shape", with(60, 0.02), true},
+    {"noise_5", "t-shape", with(60, 0.05), true},
+    {"noise_10", "t-shape", with(60, 0.10), true, false},
+    {"outliers", "t-shape", with(60, 0, 0.01), true, false},
+    {"density_10", "t-shape", with(60, 0, 0, 10), true},
+    {"holes", "t-shape", with(60, 0, 0, 1, 3), true, false},
 };
 
 struct Measured {
   size_t crossing = 0, folded = 0;
-  double least_jacobian = 1, coverage_p95 = 0, surface_mean = 0;
+  double least_jacobian = 1, coverage_p95 = 0, surface_mean = 0, inward_area = 0;
 };
 
 Measured measure(const test::Fixture& f, const std::vector<float>& positions) {
@@ -59,7 +71,9 @@ Measured measure(const test::Fixture& f, const std::vector<float>& positions) {
   m.folded = folded_edges(mesh);
   m.least_jacobian = measure_quad_shape(mesh).min_scaled_jacobian;
   m.coverage_p95 = cloud_to_mesh_relative_to_local_radius(mesh, f.shape.cloud, f.shape.surface).p95;
-  m.surface_mean = measure_true_surface_distance(mesh, f.shape.surface).relative.mean;
+  TrueSurfaceDistance truth = measure_true_surface_distance(mesh, f.shape.surface);
+  m.surface_mean = truth.relative.mean;
+  m.inward_area = truth.inward_area_fraction;
   return m;
 }
 
@@ -91,7 +105,8 @@ class HardCases : public ::testing::TestWithParam<std::tuple<HardCase, const cha
 
 //! No face pair crosses or folds that did not already in the initial mesh,
 //! every quad keeps a scaled Jacobian of at least 0.3 (or what it started
-//! with), the cloud is covered, and under noise the mesh lies closer to the
+//! with), the cloud is covered, no more than 0.1 % of the area faces against
+//! the true surface where that holds, and under noise the mesh lies closer to the
 //! true surface, on average, than the noise's sigma (the paper's step does
 //! not at 5 % and 10 %: it settles on the shell's inner layer).
 TEST_P(HardCases, RobustModeKeepsTheMeshValidAndCoversTheCloud) {
@@ -112,6 +127,9 @@ TEST_P(HardCases, RobustModeKeepsTheMeshValidAndCoversTheCloud) {
   }
   if (c.options.noise > 0) {
     EXPECT_LT(end.surface_mean, c.options.noise);
+  }
+  if (c.faces_out) {
+    EXPECT_LE(end.inward_area, 0.001) << "share of the area facing against the true surface";
   }
 }
 
