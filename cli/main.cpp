@@ -149,6 +149,9 @@ struct FitCommand {
                     "robust mode: a vertex sees only the cells of the bones near its own (on, off)");
     add_word_option(app, "--local-epsilon", e.local_epsilon, on_off_words(),
                     "robust mode: epsilon and the ray reach scale with the local radius (on, off)");
+    add_word_option(app, "--coarse-to-fine", e.coarse_to_fine, on_off_words(),
+                    "robust mode, finer than the default resolution: evolve the default resolution's mesh first, then "
+                    "refine it and evolve again (on, off)");
     app->add_option("--hit-band", e.hit_band,
                     "robust mode: a ray averages every cell within this fraction of epsilon of its first hit (0 = the "
                     "first cell only)")

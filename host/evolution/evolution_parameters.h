@@ -37,6 +37,10 @@ struct EvolutionParameters {
   //! Robust mode: a vertex sees only the cells of the bones near its own
   //! (cells/skeleton_regions.h).
   bool own_cells = true;
+  //! Robust mode, finer than the default resolution: the fit evolves the
+  //! default resolution's mesh first, refines it and evolves again
+  //! (pipeline/fit.cpp, docs/DESIGN.md).
+  bool coarse_to_fine = true;
   //! Robust mode: epsilon and the ray reach scale with the vertex's bone
   //! radius over the median radius (docs/DESIGN.md).
   bool local_epsilon = true;

@@ -472,7 +472,9 @@ InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment&
   }
   InitialMesh& result = coarse.result;
   if (options.stage == ConstructionStage::kRefined) {
-    result.refinement_levels = refinement_levels(result.mesh, options);
+    int levels = refinement_levels(result.mesh, options);
+    result.refinement_levels = options.coarse_first ? std::min(levels, 1) : levels;
+    result.finer_levels = levels - result.refinement_levels;
     result.mesh = refined(coarse, result.refinement_levels);
     result.irregular_allowed.resize(result.mesh.n_vertices(), false);
   }
@@ -534,4 +536,12 @@ CoarseMesh assemble_coarse_mesh(const TubeSkeleton& skeleton, const PointCloud& 
 }
 
 }  // namespace
+
+void refine_fitted_mesh(QuadMesh& mesh, int levels) {
+  for (int level = 0; level < levels; ++level) {
+    refine_catmull_clark(mesh, 1);
+    untangle(mesh);
+  }
+}
+
 }  // namespace mcquad

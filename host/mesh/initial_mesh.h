@@ -27,12 +27,17 @@ struct InitialMeshOptions {
   //! Junctions whose bones fork more acutely move to where the cloud's tubes
   //! part (skeleton/acute_junctions.h); 0 keeps every junction where it is.
   double min_junction_angle = 75.0 * M_PI / 180.0;
+  //! Refine only once (the default resolution) even where more levels are
+  //! asked for; InitialMesh::finer_levels says how many are left, for the
+  //! fit to add after evolving this mesh (coarse to fine, docs/DESIGN.md).
+  bool coarse_first = false;
 };
 
 struct InitialMesh {
   QuadMesh mesh;
   int open_ends = 0;
-  int refinement_levels = 0;
+  int refinement_levels = 0;            //!< Catmull-Clark levels this mesh has
+  int finer_levels = 0;                 //!< with coarse_first: levels asked for beyond refinement_levels
   std::vector<bool> irregular_allowed;  //!< per vertex: on a junction block or a cap
   TubeSkeleton skeleton;                //!< the skeleton the mesh was built on (acute junctions moved)
 };
@@ -49,5 +54,12 @@ struct InitialMesh {
 InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment& bones, const PointCloud& cloud,
                                const InitialMeshOptions& options, const std::string& source,
                                const PointIndex<float>* cloud_index = nullptr);
+
+//! Coarse to fine: a mesh already evolved at the default resolution refined
+//! `levels` more times, each level's folds and crossings relaxed as the
+//! initial mesh's are. The refined mesh has the topology the initial mesh
+//! would have had at that resolution, and starts on the cloud instead of
+//! inside it.
+void refine_fitted_mesh(QuadMesh& mesh, int levels);
 
 }  // namespace mcquad

@@ -32,18 +32,22 @@ IterationCallback snapshot_writer(const std::string& directory, const QuadMesh& 
   };
 }
 
-//! Runs the evolution on the prepared setup and leaves its positions in `mesh`.
+//! Runs the evolution on the prepared setup and leaves its positions in
+//! `mesh`; its stages are timed as `stage_prefix` + the stage's name.
 FitReport::Evolution evolve_mesh(EvolutionSetup& setup, const FitOptions& options,
-                                 const EvolutionParameters& parameters, QuadMesh& mesh, StageTimer& timer) {
-  auto backend = timer.run("backend_setup", [&] { return make_backend(options.backend, options.device); });
-  timer.run("upload", [&] {
+                                 const EvolutionParameters& parameters, QuadMesh& mesh, StageTimer& timer,
+                                 const std::string& stage_prefix = "") {
+  auto backend =
+      timer.run(stage_prefix + "backend_setup", [&] { return make_backend(options.backend, options.device); });
+  timer.run(stage_prefix + "upload", [&] {
     backend->load(setup.cells, setup.arrays, setup.regions);
     return 0;
   });
   IterationCallback snapshot;
-  if (!options.snapshots_directory.empty()) snapshot = snapshot_writer(options.snapshots_directory, mesh);
+  if (!options.snapshots_directory.empty() && stage_prefix.empty())
+    snapshot = snapshot_writer(options.snapshots_directory, mesh);
   EvolutionResult evolution =
-      timer.run("evolution", [&] { return evolve(*backend, setup.arrays, parameters, snapshot); });
+      timer.run(stage_prefix + "evolution", [&] { return evolve(*backend, setup.arrays, parameters, snapshot); });
   set_positions(mesh, evolution.positions);
   return {backend->name(), backend->device_name(), evolution.initial_error_level, std::move(evolution.iterations),
           evolution.stop_reason};
@@ -81,8 +85,14 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
   SetupScope scope = options.evolve    ? SetupScope::kEvolution
                      : options.measure ? SetupScope::kCells
                                        : SetupScope::kInitialMesh;
+  // Coarse to fine in robust mode: finer meshes start from the default
+  // resolution's fit, refined, instead of from the rough mesh 0.3 r inside
+  // the cloud, which their steps reach slowly (docs/DESIGN.md).
+  InitialMeshOptions initial_options = options.initial;
+  initial_options.coarse_first = options.evolve && options.evolution.mode == EvolutionParameters::Mode::kRobust &&
+                                 options.evolution.coarse_to_fine;
   EvolutionSetup setup =
-      prepare_evolution(graph, cloud, options.initial, options.leaf_size, skeleton_path, scope, &timer);
+      prepare_evolution(graph, cloud, initial_options, options.leaf_size, skeleton_path, scope, &timer);
   if (!options.construction_skeleton.empty())
     write_skeleton_obj(options.construction_skeleton,
                        SkeletonData{setup.initial.skeleton.graph.positions, setup.initial.skeleton.graph.edges});
@@ -98,10 +108,20 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
                    graph.node_count(), graph.edges.size(), graph.component_count};
   report.parameters = {options, parameters.epsilon, setup.median_radius,
                        cell_leaf_size(options.leaf_size, cloud.size())};
-  report.initial_mesh = {setup.initial.open_ends, setup.initial.refinement_levels, mesh_statistics(result.mesh)};
+  report.initial_mesh = {setup.initial.open_ends, setup.initial.refinement_levels, mesh_statistics(result.mesh),
+                         setup.initial.finer_levels};
   if (setup.cells.cell_count() > 0)
     report.cells = FitReport::Cells{setup.cells.cell_count(), setup.cells.node_count(), setup.cells.depth,
                                     double(setup.cells.byte_size()) / 1e6};
+  if (options.evolve && setup.initial.finer_levels > 0) {
+    report.coarse_evolution = evolve_mesh(setup, options, parameters, result.mesh, timer, "coarse_");
+    timer.run("refine_fitted", [&] {
+      refine_fitted_mesh(result.mesh, setup.initial.finer_levels);
+      setup.arrays = flatten_mesh(result.mesh);
+      setup.regions = build_skeleton_regions(setup.initial.skeleton, setup.cells, setup.arrays, setup.median_radius);
+      return 0;
+    });
+  }
   if (options.evolve) report.evolution = evolve_mesh(setup, options, parameters, result.mesh, timer);
   if (options.measure) {
     report.metrics =

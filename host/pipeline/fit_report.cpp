@@ -68,6 +68,7 @@ nlohmann::json to_json(const FitReport& r) {
   if (r.skeleton_extraction) report["skeleton_extraction"] = to_json(*r.skeleton_extraction);
   report["initial_mesh"] = {{"open_ends", r.initial_mesh.open_ends},
                             {"refinement_levels", r.initial_mesh.refinement_levels},
+                            {"levels_after_coarse_evolution", r.initial_mesh.levels_after_coarse_evolution},
                             {"statistics", to_json(r.initial_mesh.statistics)}};
   if (r.cells)
     report["cells"] = {{"cells", r.cells->cells},
@@ -78,6 +79,7 @@ nlohmann::json to_json(const FitReport& r) {
     report["backend"] = {{"name", r.evolution->backend}, {"device", r.evolution->device}};
     report["evolution"] = to_json(*r.evolution);
   }
+  if (r.coarse_evolution) report["coarse_evolution"] = to_json(*r.coarse_evolution);
   if (r.metrics) report["metrics"] = to_json(*r.metrics);
   if (r.verdict) report["verdict"] = to_json(*r.verdict);
   if (r.surfaces) report["surfaces"] = to_json(*r.surfaces);

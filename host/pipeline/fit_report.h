@@ -33,6 +33,8 @@ struct FitReport {
   struct InitialMeshSummary {
     int open_ends = 0, refinement_levels = 0;
     MeshStatistics statistics;
+    //! Coarse to fine: levels added after the evolution at this resolution.
+    int levels_after_coarse_evolution = 0;
   };
   struct Cells {
     size_t cells = 0, tree_nodes = 0;
@@ -53,8 +55,11 @@ struct FitReport {
   Parameters parameters;
   std::optional<SkeletonReport> skeleton_extraction;  //!< when no skeleton was given
   InitialMeshSummary initial_mesh;
-  std::optional<Cells> cells;                        //!< when built (fit, or init measuring)
-  std::optional<Evolution> evolution;                //!< mcquad fit, not mcquad init
+  std::optional<Cells> cells;          //!< when built (fit, or init measuring)
+  std::optional<Evolution> evolution;  //!< mcquad fit, not mcquad init
+  //! Coarse to fine (finer than the default resolution, robust mode): the
+  //! evolution at the default resolution before the mesh was refined.
+  std::optional<Evolution> coarse_evolution;
   std::optional<QualityMetrics> metrics;             //!< when measured
   std::optional<Verdict> verdict;                    //!< when measured
   std::optional<SurfaceReport> surfaces;             //!< when B-spline surfaces were asked for

@@ -198,6 +198,7 @@ def fit(
     held_back_relaxation: float = 0.6,
     own_cells: bool = True,
     local_epsilon: bool = True,
+    coarse_to_fine: bool = True,
     hit_band: float = 0.4,
     iterations: int = 20,
     tolerance: float = 0.0,
@@ -242,6 +243,8 @@ def fit(
         held_back_relaxation: robust mode: relaxation weight for the vertices the guard held back (0 to 1).
         own_cells: robust mode: a vertex sees only the cells of the bones near its own.
         local_epsilon: robust mode: epsilon and the ray reach scale with the local radius.
+        coarse_to_fine: robust mode, finer than the default resolution: evolve the default resolution's mesh
+            first, then refine it and evolve again.
         hit_band: robust mode: a ray averages every cell within this fraction of epsilon of its first hit (0 to 1).
         iterations: maximal number of iterations.
         tolerance: stop when the error level improves by less than this fraction (0: never).

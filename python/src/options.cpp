@@ -80,6 +80,7 @@ const FieldTable<FitOptions>& fit_fields() {
       {"held_back_relaxation", nested(&O::evolution, &E::held_back_relaxation)},
       {"own_cells", nested(&O::evolution, &E::own_cells)},
       {"local_epsilon", nested(&O::evolution, &E::local_epsilon)},
+      {"coarse_to_fine", nested(&O::evolution, &E::coarse_to_fine)},
       {"hit_band", nested(&O::evolution, &E::hit_band)},
       {"iterations", nested(&O::evolution, &E::iterations)},
       {"tolerance", nested(&O::evolution, &E::tolerance)},
