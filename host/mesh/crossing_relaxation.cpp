@@ -27,12 +27,7 @@ size_t relax_crossings(QuadMesh& mesh, int rounds) {
         for (auto v : mesh.fv_range(mesh.face_handle(face))) region.insert(v.idx());
     // Smoothing only the crossing faces' corners pulls them into their
     // neighbours; their rings give way with them.
-    for (int ring = 0; ring < 1 + std::min(5, round / 10); ++ring) {
-      std::set<int> grown = region;
-      for (int i : region)
-        for (auto w : mesh.vv_range(mesh.vertex_handle(i))) grown.insert(w.idx());
-      region.swap(grown);
-    }
+    grow_region(mesh, region, 1 + std::min(5, round / 10));
     relax_vertices(mesh, region);
   }
 }

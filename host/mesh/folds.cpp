@@ -36,6 +36,15 @@ void relax_vertices(QuadMesh& mesh, const std::set<int>& region) {
   for (const auto& [i, p] : moved) mesh.set_point(mesh.vertex_handle(i), p);
 }
 
+void grow_region(const QuadMesh& mesh, std::set<int>& region, int rings) {
+  for (int ring = 0; ring < rings; ++ring) {
+    std::set<int> grown = region;
+    for (int i : region)
+      for (auto w : mesh.vv_range(mesh.vertex_handle(i))) grown.insert(w.idx());
+    region.swap(grown);
+  }
+}
+
 void relax_folds(QuadMesh& mesh, int widening_rings) {
   for (int round = 0; round < 50; ++round) {
     std::set<int> region;
@@ -46,12 +55,7 @@ void relax_folds(QuadMesh& mesh, int widening_rings) {
           for (auto w : mesh.vv_range(v)) region.insert(w.idx());
     }
     if (region.empty()) return;
-    for (int ring = 0; ring < std::min(widening_rings, round / 10); ++ring) {
-      std::set<int> grown = region;
-      for (int i : region)
-        for (auto w : mesh.vv_range(mesh.vertex_handle(i))) grown.insert(w.idx());
-      region.swap(grown);
-    }
+    grow_region(mesh, region, std::min(widening_rings, round / 10));
     relax_vertices(mesh, region);
   }
 }

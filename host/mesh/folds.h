@@ -25,6 +25,9 @@ size_t folded_edges(const QuadMesh& mesh);
 //! halfway to its neighbours' mean (all from the positions before the round).
 void relax_vertices(QuadMesh& mesh, const std::set<int>& region);
 
+//! Adds `rings` rings of edge neighbours round `region`.
+void grow_region(const QuadMesh& mesh, std::set<int>& region, int rings);
+
 //! Where tubes meet at a junction, refinement can leave a face folded over
 //! its neighbour. Such places are relaxed (umbrella smoothing of the folded
 //! faces' vertices and their neighbours) until no fold is left, for at most
