@@ -1,5 +1,6 @@
 #include "mesh/crossing_relaxation.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <set>
 
