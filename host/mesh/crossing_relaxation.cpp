@@ -20,7 +20,8 @@ size_t relax_crossings(QuadMesh& mesh, int rounds) {
       fewest = pairs.size();
       since_fewest = 0;
     }
-    // Where tubes pass through each other, smoothing does not part them.
+    // Faces pinched into one point in a tight crease, or tubes through each
+    // other, are not parted by smoothing: give up.
     if (pairs.empty() || round == rounds || ++since_fewest > kRoundsWithoutProgress) return pairs.size();
     std::set<int> region;
     for (const auto& [a, b] : pairs)

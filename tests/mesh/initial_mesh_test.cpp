@@ -144,8 +144,8 @@ class JunctionTopology : public testing::TestWithParam<ShapeCase> {};
 //! Euler characteristic and boundary loops, and irregular vertices only on
 //! blocks and caps, at most max(8, 2 x valence) a junction and 4 a cap, as
 //! many at both levels. Refined (at the default resolution and finer), no
-//! faces cross, but on the skew 9, whose tubes pass through each other out
-//! of the block (docs/CONSTRUCTION.md).
+//! faces cross, but on the skew 9, where a few faces stay pinched into one
+//! point in a crease beside the block (docs/CONSTRUCTION.md).
 TEST_P(JunctionTopology, HoldsAtAnyValence) {
   const ShapeCase& c = GetParam();
   ShapeUnderTest t(c);
