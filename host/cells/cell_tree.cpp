@@ -3,7 +3,8 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <nanoflann.hpp>
+#include <limits>
+#include <memory>
 
 #include "core/errors.h"
 #include "core/point_index.h"
@@ -11,18 +12,6 @@
 
 namespace mcquad {
 namespace {
-
-struct CloudAdaptor {
-  const PointCloud& cloud;
-  size_t kdtree_get_point_count() const { return cloud.size(); }
-  float kdtree_get_pt(size_t i, size_t dim) const { return cloud.points[i][dim]; }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, CloudAdaptor>, CloudAdaptor, 3>;
-using KdNode = KdTree::Node;
 
 //! Least-squares plane of a cell: centroid and the eigenvector of the
 //! smallest eigenvalue of the 3x3 covariance (accumulated in double).
@@ -47,84 +36,245 @@ void fit_cell_plane(const float* points, size_t count, float* centroid, float* n
   }
 }
 
-class Flattener {
- public:
-  Flattener(const PointCloud& cloud, const KdTree& tree, CellTree& out, float padding)
-      : cloud_(cloud), tree_(tree), out_(out), padding_(padding) {}
+//! A node of the tree while it is built: the range of points it holds and,
+//! unless it is a leaf, its two halves.
+struct BuildNode {
+  size_t first = 0, last = 0;
+  std::unique_ptr<BuildNode> child[2];
+  bool is_leaf() const { return !child[0]; }
+};
 
-  //! Appends `node` and its subtree in depth-first order; returns its index.
-  int flatten(const KdNode* node, int level) {
-    int index = int(out_.node_count());
-    out_.node_children.insert(out_.node_children.end(), {-1, -1});
-    out_.node_bounds.resize(out_.node_bounds.size() + 6);
-    out_.depth = std::max(out_.depth, level);
-    if (!node->child1 && !node->child2) {
-      int cell = add_cell(node->node_type.lr.left, node->node_type.lr.right);
-      out_.node_children[2 * index] = -1 - cell;
-      set_bounds(index, out_.points.data() + 3 * out_.cell_offsets[cell],
-                 out_.cell_offsets[cell + 1] - out_.cell_offsets[cell]);
-      return index;
-    }
-    int left = flatten(node->child1, level + 1);
-    int right = flatten(node->child2, level + 1);
-    out_.node_children[2 * index] = left;
-    out_.node_children[2 * index + 1] = right;
-    for (int k = 0; k < 3; ++k) {
-      out_.node_bounds[6 * index + k] = std::min(out_.node_bounds[6 * left + k], out_.node_bounds[6 * right + k]);
-      out_.node_bounds[6 * index + 3 + k] =
-          std::max(out_.node_bounds[6 * left + 3 + k], out_.node_bounds[6 * right + 3 + k]);
-    }
-    return index;
+struct SplitBox {
+  float low[3], high[3];
+};
+
+//! nanoflann's kd-tree construction (KDTreeSingleIndexAdaptor::divideTree,
+//! middleSplit_, planeSplit, version 1.4.2), step for step, so the cells are
+//! the ones the library builds -- tests/cells/cell_tree_test.cpp checks it --
+//! but on the points themselves instead of an index array: every pass reads
+//! memory in order, no 4-byte index a point is kept, the points end up in
+//! cell order with no copy, and the two halves of a large node are built on
+//! different cores. At 10^8 points: 26 s before, see docs/PERFORMANCE.md.
+class CellTreeBuilder {
+ public:
+  CellTreeBuilder(std::vector<float>& xyz, size_t leaf_size) : xyz_(xyz), leaf_size_(leaf_size) {}
+
+  std::unique_ptr<BuildNode> build() {
+    auto root = std::make_unique<BuildNode>();
+    root->last = xyz_.size() / 3;
+    SplitBox box = bounds(0, root->last);
+#pragma omp parallel
+#pragma omp single
+    divide(*root, box);
+    return root;
   }
 
  private:
-  int add_cell(size_t first, size_t last) {
-    int cell = int(out_.cell_count());
-    for (size_t i = first; i < last; ++i) {
-      size_t id = tree_.vAcc[i];
-      out_.points.insert(out_.points.end(), cloud_.points[id].data(), cloud_.points[id].data() + 3);
-    }
-    out_.cell_offsets.push_back(uint32_t(out_.point_count()));
-    out_.cell_centroids.resize(out_.cell_centroids.size() + 3);
-    out_.cell_normals.resize(out_.cell_normals.size() + 3);
-    fit_cell_plane(out_.points.data() + 3 * out_.cell_offsets[cell], last - first, &out_.cell_centroids[3 * cell],
-                   &out_.cell_normals[3 * cell]);
-    return cell;
+  static constexpr size_t kParallelPoints = 1 << 16;
+
+  float at(size_t i, int axis) const { return xyz_[3 * i + size_t(axis)]; }
+
+  void swap_points(size_t a, size_t b) {
+    for (size_t k = 0; k < 3; ++k) std::swap(xyz_[3 * a + k], xyz_[3 * b + k]);
   }
 
-  //! A leaf's box: tight around its points, then padded by the cloud's
-  //! typical point spacing. Tight boxes of neighbouring patches of a surface
-  //! leave gaps a ray can slip through, and a vertex whose rays all slip
-  //! through never moves; the padding closes the gaps (docs/DESIGN.md).
-  void set_bounds(int node, const float* points, size_t count) {
-    float* b = &out_.node_bounds[6 * node];
-    for (int k = 0; k < 3; ++k) b[k] = b[3 + k] = points[k];
-    for (size_t i = 1; i < count; ++i) {
-      for (int k = 0; k < 3; ++k) {
-        b[k] = std::min(b[k], points[3 * i + k]);
-        b[3 + k] = std::max(b[3 + k], points[3 * i + k]);
+  SplitBox bounds(size_t first, size_t last) const {
+    SplitBox box{};
+    for (int k = 0; k < 3; ++k) {
+      float lo = at(first, k), hi = lo;
+      for (size_t i = first + 1; i < last; ++i) {
+        lo = std::min(lo, at(i, k));
+        hi = std::max(hi, at(i, k));
+      }
+      box.low[k] = lo;
+      box.high[k] = hi;
+    }
+    return box;
+  }
+
+  void divide(BuildNode& node, const SplitBox& box) {
+    const size_t count = node.last - node.first;
+    if (count <= leaf_size_) return;
+    int axis = 0;
+    float cut = 0;
+    size_t index = split(node.first, count, box, axis, cut);
+    for (auto& child : node.child) child = std::make_unique<BuildNode>();
+    node.child[0]->first = node.first;
+    node.child[0]->last = node.child[1]->first = node.first + index;
+    node.child[1]->last = node.last;
+    SplitBox low_box = box, high_box = box;
+    low_box.high[axis] = cut;
+    high_box.low[axis] = cut;
+    if (count > kParallelPoints) {
+#pragma omp task default(shared)
+      divide(*node.child[0], low_box);
+      divide(*node.child[1], high_box);
+#pragma omp taskwait
+    } else {
+      divide(*node.child[0], low_box);
+      divide(*node.child[1], high_box);
+    }
+  }
+
+  //! middleSplit_: the axis of largest point spread among those whose box
+  //! side is within 1e-5 of the longest, cut at the box's middle clamped to
+  //! the points; returns where the upper half starts.
+  size_t split(size_t first, size_t count, const SplitBox& box, int& axis, float& cut) {
+    const float kEps = 0.00001f;
+    float max_span = box.high[0] - box.low[0];
+    for (int k = 1; k < 3; ++k) max_span = std::max(max_span, box.high[k] - box.low[k]);
+    float max_spread = -1, axis_min = 0, axis_max = 0;
+    axis = 0;
+    for (int k = 0; k < 3; ++k) {
+      if (!(box.high[k] - box.low[k] > (1 - kEps) * max_span)) continue;
+      float lo = at(first, k), hi = lo;
+      for (size_t i = first + 1; i < first + count; ++i) {
+        lo = std::min(lo, at(i, k));
+        hi = std::max(hi, at(i, k));
+      }
+      if (hi - lo > max_spread) {
+        axis = k;
+        max_spread = hi - lo;
+        axis_min = lo;
+        axis_max = hi;
       }
     }
-    for (int k = 0; k < 3; ++k) {
-      b[k] -= padding_;
-      b[3 + k] += padding_;
+    if (max_spread < 0) {  // no side passed the test (NaN-free clouds always have one): as nanoflann, axis 0
+      SplitBox tight = bounds(first, first + count);
+      axis_min = tight.low[0];
+      axis_max = tight.high[0];
     }
+    float middle = (box.low[axis] + box.high[axis]) / 2;
+    cut = middle < axis_min ? axis_min : middle > axis_max ? axis_max : middle;
+    size_t below = 0, not_above = 0;
+    plane_split(first, count, axis, cut, below, not_above);
+    if (below > count / 2) return below;
+    if (not_above < count / 2) return not_above;
+    return count / 2;
   }
 
-  const PointCloud& cloud_;
-  const KdTree& tree_;
-  CellTree& out_;
-  float padding_;
+  //! planeSplit: points below `cut` first, then those equal to it, then the
+  //! rest; `below` and `not_above` are where the second and third groups
+  //! start. The same swaps as nanoflann's, so the same order.
+  void plane_split(size_t first, size_t count, int axis, float cut, size_t& below, size_t& not_above) {
+    size_t left = 0, right = count - 1;
+    for (;;) {
+      while (left <= right && at(first + left, axis) < cut) ++left;
+      while (right && left <= right && at(first + right, axis) >= cut) --right;
+      if (left > right || !right) break;
+      swap_points(first + left, first + right);
+      ++left;
+      --right;
+    }
+    below = left;
+    right = count - 1;
+    for (;;) {
+      while (left <= right && at(first + left, axis) <= cut) ++left;
+      while (right && left <= right && at(first + right, axis) > cut) --right;
+      if (left > right || !right) break;
+      swap_points(first + left, first + right);
+      ++left;
+      --right;
+    }
+    not_above = left;
+  }
+
+  std::vector<float>& xyz_;
+  size_t leaf_size_;
 };
 
-void count_nodes(const KdNode* node, size_t& nodes, size_t& leaves) {
+//! Writes the built tree into the flat arrays, depth first (a node, its
+//! lower half, its upper half), with tight boxes; the leaves come out in
+//! the order of their point ranges.
+int flatten(const BuildNode& node, int level, CellTree& out) {
+  int index = int(out.node_count());
+  out.node_children.insert(out.node_children.end(), {-1, -1});
+  out.node_bounds.resize(out.node_bounds.size() + 6);
+  out.depth = std::max(out.depth, level);
+  float* b = &out.node_bounds[6 * size_t(index)];
+  if (node.is_leaf()) {
+    int cell = int(out.cell_count());
+    out.cell_offsets.push_back(uint32_t(node.last));
+    out.node_children[2 * size_t(index)] = -1 - cell;
+    const float* p = out.points.data() + 3 * node.first;
+    for (int k = 0; k < 3; ++k) b[k] = b[3 + k] = p[k];
+    for (size_t i = 1; i < node.last - node.first; ++i) {
+      for (int k = 0; k < 3; ++k) {
+        b[k] = std::min(b[k], p[3 * i + size_t(k)]);
+        b[3 + k] = std::max(b[3 + k], p[3 * i + size_t(k)]);
+      }
+    }
+    return index;
+  }
+  int left = flatten(*node.child[0], level + 1, out);
+  int right = flatten(*node.child[1], level + 1, out);
+  out.node_children[2 * size_t(index)] = left;
+  out.node_children[2 * size_t(index) + 1] = right;
+  b = &out.node_bounds[6 * size_t(index)];  // the arrays may have grown
+  for (int k = 0; k < 3; ++k) {
+    b[k] = std::min(out.node_bounds[6 * size_t(left) + size_t(k)], out.node_bounds[6 * size_t(right) + size_t(k)]);
+    b[3 + k] =
+        std::max(out.node_bounds[6 * size_t(left) + 3 + size_t(k)], out.node_bounds[6 * size_t(right) + 3 + size_t(k)]);
+  }
+  return index;
+}
+
+void count_nodes(const BuildNode& node, size_t& nodes, size_t& leaves) {
   nodes += 1;
-  if (!node->child1 && !node->child2) {
+  if (node.is_leaf()) {
     leaves += 1;
     return;
   }
-  count_nodes(node->child1, nodes, leaves);
-  count_nodes(node->child2, nodes, leaves);
+  count_nodes(*node.child[0], nodes, leaves);
+  count_nodes(*node.child[1], nodes, leaves);
+}
+
+//! Squared distance from q to its second nearest point in the cells (the
+//! nearest other than q itself when q is one of them), exact: what a
+//! nanoflann k-nearest search for 2 gives, in the same float arithmetic.
+float second_nearest_distance2(const CellTree& cells, const Eigen::Vector3f& q) {
+  auto box_distance2 = [&](int node) {
+    const float* b = &cells.node_bounds[6 * size_t(node)];
+    float box = 0;
+    for (int k = 0; k < 3; ++k) {
+      float d = std::max({b[k] - q[k], 0.0f, q[k] - b[3 + k]});
+      box += d * d;
+    }
+    return box;
+  };
+  float best[2] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity()};
+  std::vector<std::pair<float, int>> stack = {{0.0f, 0}};  // nearer halves on top
+  while (!stack.empty()) {
+    auto [box, node] = stack.back();
+    stack.pop_back();
+    if (box > best[1]) continue;
+    int left = cells.node_children[2 * size_t(node)];
+    if (left >= 0) {
+      int right = cells.node_children[2 * size_t(node) + 1];
+      float to_left = box_distance2(left), to_right = box_distance2(right);
+      if (to_left <= to_right) {
+        stack.emplace_back(to_right, right);
+        stack.emplace_back(to_left, left);
+      } else {
+        stack.emplace_back(to_left, left);
+        stack.emplace_back(to_right, right);
+      }
+      continue;
+    }
+    int cell = -1 - left;
+    for (uint32_t p = cells.cell_offsets[size_t(cell)]; p < cells.cell_offsets[size_t(cell) + 1]; ++p) {
+      const float* x = &cells.points[3 * size_t(p)];
+      float d0 = x[0] - q[0], d1 = x[1] - q[1], d2 = x[2] - q[2];
+      float d = d0 * d0 + d1 * d1 + d2 * d2;
+      if (d < best[0]) {
+        best[1] = best[0];
+        best[0] = d;
+      } else if (d < best[1]) {
+        best[1] = d;
+      }
+    }
+  }
+  return best[1];
 }
 
 }  // namespace
@@ -137,26 +287,44 @@ size_t CellTree::byte_size() const {
 CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size, bool pad_boxes) {
   if (cloud.empty()) throw InputError("cannot build cells: the point cloud is empty");
   if (cloud.size() >= size_t(UINT32_MAX)) throw UnsupportedError("clouds of 2^32 points or more are not supported");
-  CloudAdaptor adaptor{cloud};
-  KdTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(std::max<size_t>(leaf_size, 1)));
-  tree.buildIndex();
+  CellTree cells;
+  cells.points.assign(cloud.data(), cloud.data() + 3 * cloud.size());
+  std::unique_ptr<BuildNode> root = CellTreeBuilder(cells.points, std::max<size_t>(leaf_size, 1)).build();
   // Exact sizes up front: grown by doubling, the arrays of a 10^7-point
   // cloud would hold up to twice their size, and copy it at every step.
   size_t nodes = 0, leaves = 0;
-  count_nodes(tree.root_node, nodes, leaves);
-  CellTree cells;
-  cells.points.reserve(3 * cloud.size());
+  count_nodes(*root, nodes, leaves);
   cells.cell_offsets.reserve(leaves + 1);
-  cells.cell_centroids.reserve(3 * leaves);
-  cells.cell_normals.reserve(3 * leaves);
   cells.node_bounds.reserve(6 * nodes);
   cells.node_children.reserve(2 * nodes);
   cells.cell_offsets.push_back(0);
-  cells.point_spacing = median_neighbour_spacing(cloud.points, tree);
-  Flattener(cloud, tree, cells, pad_boxes ? float(cells.point_spacing) : 0.0f).flatten(tree.root_node, 0);
+  flatten(*root, 0, cells);
+  root.reset();
   if (cells.depth > MCQ_MAX_TREE_DEPTH)
     throw UnsupportedError("the cell tree is " + std::to_string(cells.depth) + " levels deep, more than the " +
                            std::to_string(MCQ_MAX_TREE_DEPTH) + " the traversal supports (many duplicate points?)");
+  cells.cell_centroids.resize(3 * leaves);
+  cells.cell_normals.resize(3 * leaves);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (long c = 0; c < long(leaves); ++c) {
+    uint32_t first = cells.cell_offsets[size_t(c)], last = cells.cell_offsets[size_t(c) + 1];
+    fit_cell_plane(cells.points.data() + 3 * size_t(first), last - first, &cells.cell_centroids[3 * size_t(c)],
+                   &cells.cell_normals[3 * size_t(c)]);
+  }
+  cells.point_spacing = neighbour_spacing_quantile(
+      cloud.points, [&](const Eigen::Vector3f& p) { return second_nearest_distance2(cells, p); }, 0.5);
+  // Leaf boxes padded by the typical point spacing: tight boxes of
+  // neighbouring patches of a surface leave gaps a ray can slip through,
+  // and a vertex whose rays all slip through never moves; the padding
+  // closes the gaps (docs/DESIGN.md). An inner box, the union of its
+  // children's, grows by the same amount.
+  const float padding = pad_boxes ? float(cells.point_spacing) : 0.0f;
+  for (size_t node = 0; node < cells.node_count(); ++node) {
+    for (int k = 0; k < 3; ++k) {
+      cells.node_bounds[6 * node + size_t(k)] -= padding;
+      cells.node_bounds[6 * node + 3 + size_t(k)] += padding;
+    }
+  }
   return cells;
 }
 

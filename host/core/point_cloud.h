@@ -34,6 +34,15 @@ struct PointCloud {
   const float* data() const { return reinterpret_cast<const float*>(points.data()); }
 };
 
+//! The stride k for which every k-th of `points` points gives at most
+//! `max_points` of them (1 when max_points is 0: every point).
+size_t cloud_sample_stride(size_t points, size_t max_points);
+
+//! Every k-th point (with its normal, when the cloud has normals), at most
+//! `max_points` of them. On a spatially sorted cloud (sort_spatially) the
+//! sample is spread evenly over the surface.
+PointCloud strided_sample(const PointCloud& cloud, size_t max_points);
+
 //! Every k-th point with a usable normal (finite, nonzero), at most about
 //! `max_points` of them; empty when the cloud has no normals.
 OrientedSample oriented_sample(const PointCloud& cloud, size_t max_points = 1000000);

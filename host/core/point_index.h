@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <nanoflann.hpp>
 #include <vector>
@@ -12,26 +13,22 @@ namespace mcquad {
 
 //! A quantile (0.5: the median) of the distance from a point to its nearest
 //! neighbour, over a deterministic subsample of about 2000 points (enough
-//! for it). `tree` is any nanoflann index over `points` with 32-bit indices.
-template <typename Tree, typename Point>
-double neighbour_spacing_quantile(const std::vector<Point>& points, const Tree& tree, double quantile) {
+//! for it). `second_nearest2(p)` gives the squared distance from one of the
+//! points to its second nearest among them (the nearest being itself), or
+//! infinity when there is none.
+template <typename Point, typename SecondNearest2>
+double neighbour_spacing_quantile(const std::vector<Point>& points, const SecondNearest2& second_nearest2,
+                                  double quantile) {
   std::vector<double> gaps;
   size_t stride = std::max<size_t>(1, points.size() / 2000);
   for (size_t i = 0; i < points.size(); i += stride) {
-    uint32_t index[2];
-    typename Point::Scalar distance2[2];
-    if (tree.knnSearch(points[i].data(), 2, index, distance2) == 2) gaps.push_back(std::sqrt(double(distance2[1])));
+    double d2 = double(second_nearest2(points[i]));
+    if (std::isfinite(d2)) gaps.push_back(std::sqrt(d2));
   }
   if (gaps.empty()) return 0.0;
   auto at = gaps.begin() + long(std::min(gaps.size() - 1, size_t(quantile * double(gaps.size()))));
   std::nth_element(gaps.begin(), at, gaps.end());
   return *at;
-}
-
-//! The cloud's typical point spacing: the median nearest-neighbour distance.
-template <typename Tree, typename Point>
-double median_neighbour_spacing(const std::vector<Point>& points, const Tree& tree) {
-  return neighbour_spacing_quantile(points, tree, 0.5);
 }
 
 //! Nearest-neighbour index over a vector of 3D points (nanoflann through an
@@ -81,10 +78,19 @@ class PointIndex {
     return indices;
   }
 
-  //! See median_neighbour_spacing and neighbour_spacing_quantile.
-  double median_spacing() const { return median_neighbour_spacing(adaptor_.points, tree_); }
+  //! The squared distance from one of the points to its second nearest
+  //! (the nearest other than itself), infinity when there is none.
+  Scalar second_nearest_distance2(const Point& p) const {
+    uint32_t index[2];
+    Scalar distance2[2];
+    if (tree_.knnSearch(p.data(), 2, index, distance2) < 2) return std::numeric_limits<Scalar>::infinity();
+    return distance2[1];
+  }
+  //! See neighbour_spacing_quantile.
+  double median_spacing() const { return spacing_quantile(0.5); }
   double spacing_quantile(double quantile) const {
-    return neighbour_spacing_quantile(adaptor_.points, tree_, quantile);
+    return neighbour_spacing_quantile(
+        adaptor_.points, [this](const Point& p) { return second_nearest_distance2(p); }, quantile);
   }
 
  private:

@@ -57,6 +57,12 @@ MappedFile::MappedFile(const std::string& path) {
   ::close(fd);
 }
 
+void MappedFile::release_before(size_t offset) const {
+  const size_t page = size_t(::sysconf(_SC_PAGESIZE));
+  size_t length = std::min(offset, size_) / page * page;
+  if (data_ && length > 0) ::madvise(data_, length, MADV_DONTNEED);
+}
+
 MappedFile::~MappedFile() {
   if (data_) ::munmap(data_, size_);
 }

@@ -39,10 +39,6 @@ std::vector<double> mesh_to_cloud_distances(const QuadMesh& mesh, const CellTree
   return out;
 }
 
-size_t cloud_sample_stride(size_t points, size_t max_points) {
-  return max_points > 0 ? std::max<size_t>(1, (points + max_points - 1) / max_points) : 1;
-}
-
 std::vector<double> cloud_to_mesh_distances(const QuadMesh& mesh, const PointCloud& cloud, size_t max_points) {
   MeshTriangles triangles = triangulate(mesh);
   TriangleTree tree(triangles);

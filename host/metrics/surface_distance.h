@@ -26,10 +26,8 @@ std::vector<double> mesh_to_cloud_distances(const QuadMesh& mesh, const CellTree
 //! Distance of every cloud point to the mesh surface (quads split into two
 //! triangles), exact: the nearest triangle from one TriangleTree
 //! (mesh/triangle_tree.h). With `max_points` > 0, every k-th point only, so
-//! that at most that many are measured (huge clouds).
+//! that at most that many are measured (huge clouds): distance k is of point
+//! k * cloud_sample_stride(cloud.size(), max_points).
 std::vector<double> cloud_to_mesh_distances(const QuadMesh& mesh, const PointCloud& cloud, size_t max_points = 0);
-
-//! The stride cloud_to_mesh_distances takes: distance k is of point k * stride.
-size_t cloud_sample_stride(size_t points, size_t max_points);
 
 }  // namespace mcquad

@@ -26,15 +26,25 @@ EvolutionSetup prepare_evolution(const SkeletonGraph& graph, const PointCloud& c
   StageTimer own_timer;
   StageTimer& stages = timer ? *timer : own_timer;
   EvolutionSetup setup;
+  // The radii and the initial mesh need the surface's shape, not every
+  // point: above kMaxSetupPoints they read an even sample of the (sorted)
+  // cloud. At 10^8 points the index, the radii and the initial mesh took
+  // 46 s and 2 GB on all of them (docs/PERFORMANCE.md).
+  PointCloud sample;
+  if (cloud.size() > kMaxSetupPoints) sample = strided_sample(cloud, kMaxSetupPoints);
+  const PointCloud& shape_points = sample.empty() ? cloud : sample;
   // The index serves the radii and the initial mesh, then goes before the cells are built.
-  auto cloud_index = stages.run("point_index", [&] { return std::make_unique<PointIndex<float>>(cloud.points); });
-  setup.bones = stages.run("radius", [&] { return assign_points_to_bones(graph, cloud, source, cloud_index.get()); });
+  auto cloud_index =
+      stages.run("point_index", [&] { return std::make_unique<PointIndex<float>>(shape_points.points); });
+  setup.bones =
+      stages.run("radius", [&] { return assign_points_to_bones(graph, shape_points, source, cloud_index.get()); });
   setup.median_radius = median_bone_radius(setup.bones);
   setup.bones.release_per_point();  // only the radii are needed from here on
   setup.initial = stages.run("initial_mesh", [&] {
-    return build_initial_mesh(graph, setup.bones, cloud, options, source, cloud_index.get());
+    return build_initial_mesh(graph, setup.bones, shape_points, options, source, cloud_index.get());
   });
   cloud_index.reset();
+  sample = PointCloud();
   if (scope == SetupScope::kInitialMesh) return setup;
   setup.cells = stages.run("cells", [&] { return build_cell_tree(cloud, cell_leaf_size(leaf_size, cloud.size())); });
   // nanoflann allocates its tree nodes in small pooled blocks that glibc

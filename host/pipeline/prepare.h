@@ -32,6 +32,11 @@ size_t cell_leaf_size(size_t requested, size_t points);
 
 //! How far prepare_evolution goes: the initial mesh alone (mcquad init),
 //! with the cells too (measuring a mesh), or everything the evolution needs.
+//! The most points the radii and the initial mesh read: larger clouds give
+//! them an even sample of this size (the cells and the evolution still use
+//! every point).
+constexpr size_t kMaxSetupPoints = 4000000;
+
 enum class SetupScope { kInitialMesh, kCells, kEvolution };
 
 //! Everything the evolution starts from, built from a cloud and its

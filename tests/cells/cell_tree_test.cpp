@@ -1,8 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <nanoflann.hpp>
+#include <numeric>
 #include <random>
 
 #include "cells/cell_tree.h"
+#include "core/point_index.h"
 #include "core/shared_math.h"
 
 namespace mcquad {
@@ -16,7 +19,49 @@ PointCloud random_cloud(size_t n, unsigned seed) {
   return cloud;
 }
 
+//! A cloud with what makes splits tie: duplicate points, points sharing a
+//! coordinate, a flat patch, and a cluster far away.
+PointCloud awkward_cloud(size_t n, unsigned seed) {
+  PointCloud cloud = random_cloud(n, seed);
+  std::mt19937 random(seed + 1);
+  std::uniform_int_distribution<size_t> pick(0, n - 1);
+  for (size_t i = 0; i < n / 10; ++i) cloud.points.push_back(cloud.points[pick(random)]);
+  for (size_t i = 0; i < n / 10; ++i) cloud.points[pick(random)].x() = 0.25f;
+  for (size_t i = 0; i < n / 20; ++i) cloud.points.emplace_back(0.5f, float(i % 7) * 0.01f, float(i % 5) * 0.01f);
+  for (size_t i = 0; i < 40; ++i) cloud.points.emplace_back(9.0f, 9.0f + 0.001f * float(i), 9.0f);
+  return cloud;
+}
+
 device::mcq_vec3 vec(const Eigen::Vector3f& v) { return device::mcq_make_vec3(v.x(), v.y(), v.z()); }
+
+// The order is that of the points' 13-bit-per-axis Morton codes, ties in
+// input order: the bucketed sort against a plain stable sort by code.
+TEST(PointCloud, SpatialSortIsAStableSortByMortonCode) {
+  for (size_t n : {2u, 1000u, 70000u}) {
+    PointCloud cloud = awkward_cloud(n, unsigned(n) + 5);
+    cloud.normals.resize(cloud.size());
+    for (size_t i = 0; i < cloud.size(); ++i) cloud.normals[i] = Eigen::Vector3f(float(i), 0, 0);
+    auto [lo, hi] = bounding_box(cloud);
+    Eigen::Vector3f scale = (hi - lo).cwiseMax(1e-30f).cwiseInverse() * float((1 << 13) - 1);
+    auto code = [&](const Eigen::Vector3f& p) {
+      Eigen::Vector3f c = (p - lo).cwiseProduct(scale);
+      uint64_t key = 0;
+      for (int bit = 12; bit >= 0; --bit)
+        for (int k = 2; k >= 0; --k) key = key << 1 | ((uint64_t(c[k]) >> bit) & 1);
+      return key;
+    };
+    std::vector<size_t> order(cloud.size());
+    std::iota(order.begin(), order.end(), size_t(0));
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return code(cloud.points[a]) < code(cloud.points[b]); });
+    PointCloud sorted = cloud;
+    sort_spatially(sorted);
+    for (size_t i = 0; i < order.size(); ++i) {
+      ASSERT_EQ(sorted.points[i], cloud.points[order[i]]) << n << " points, place " << i;
+      ASSERT_EQ(sorted.normals[i], cloud.normals[order[i]]) << n << " points, place " << i;
+    }
+  }
+}
 
 TEST(PointCloud, SpatialSortIsAPermutationThatBringsNeighboursTogether) {
   PointCloud cloud = random_cloud(20000, 21);
@@ -35,6 +80,50 @@ TEST(PointCloud, SpatialSortIsAPermutationThatBringsNeighboursTogether) {
     return sum / double(c.size() - 1);
   };
   EXPECT_LT(mean_step(sorted), 0.1 * mean_step(cloud));
+}
+
+struct NanoflannAdaptor {
+  const std::vector<Eigen::Vector3f>& points;
+  size_t kdtree_get_point_count() const { return points.size(); }
+  float kdtree_get_pt(size_t i, size_t dim) const { return points[i][long(dim)]; }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
+};
+
+// The cells are nanoflann's kd-tree (build_cell_tree repeats its steps on the
+// points themselves): the same leaves, each with its points in the same order,
+// and the same spacing as a nanoflann 2-nearest search.
+TEST(CellTree, CellsAreTheLeavesOfNanoflannsTree) {
+  using Adaptor = NanoflannAdaptor;
+  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, Adaptor>, Adaptor, 3, uint32_t>;
+  for (auto [n, leaf] : {std::pair<size_t, size_t>{1, 6}, {50, 6}, {3000, 6}, {20000, 16}, {150000, 30}}) {
+    PointCloud cloud = awkward_cloud(n, unsigned(n));
+    Adaptor adaptor{cloud.points};
+    Tree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(leaf));
+    tree.buildIndex();
+    std::vector<float> expected_points;
+    std::vector<uint32_t> expected_offsets = {0};
+    std::vector<const Tree::Node*> stack = {tree.root_node};
+    while (!stack.empty()) {
+      const Tree::Node* node = stack.back();
+      stack.pop_back();
+      if (node->child1) {
+        stack.push_back(node->child2);
+        stack.push_back(node->child1);
+        continue;
+      }
+      for (size_t i = node->node_type.lr.left; i < node->node_type.lr.right; ++i)
+        expected_points.insert(expected_points.end(), cloud.points[tree.vAcc[i]].data(),
+                               cloud.points[tree.vAcc[i]].data() + 3);
+      expected_offsets.push_back(uint32_t(node->node_type.lr.right));
+    }
+    CellTree cells = build_cell_tree(cloud, leaf);
+    EXPECT_EQ(cells.points, expected_points) << n << " points";
+    EXPECT_EQ(cells.cell_offsets, expected_offsets) << n << " points";
+    EXPECT_EQ(cells.point_spacing, PointIndex<float>(cloud.points).median_spacing()) << n << " points";
+  }
 }
 
 TEST(CellTree, CellsPartitionTheCloudWithTightBoxes) {
