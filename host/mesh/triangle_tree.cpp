@@ -140,20 +140,23 @@ std::pair<double, long> TriangleTree::nearest(const Eigen::Vector3d& p, long hin
   }
   const Eigen::Vector3f q = p.cast<float>();
   // Float boxes are rounded outward, but q is rounded too: a box's distance
-  // may come out a float's rounding over the truth, hence the slack.
-  const auto box_distance = [&](const Box& box) {
-    return std::sqrt(double(box.squaredExteriorDistance(q))) * (1 - 1e-6) - 1e-6 * q.norm();
-  };
+  // may come out a float's rounding over the truth, hence the slack: a box
+  // counts as beyond `best` when sqrt(d2) (1 - 1e-6) - 1e-6 |q| >= best,
+  // compared squared (no square root per box).
+  const double slack = 1e-6 * double(q.norm()), shrink2 = (1 - 1e-6) * (1 - 1e-6);
+  const auto box_distance = [&](const Box& box) { return double(box.squaredExteriorDistance(q)) * shrink2; };
+  const auto beyond_best = [&](double scaled_d2) { return scaled_d2 >= (best + slack) * (best + slack); };
   std::pair<double, int> stack[128];
   int top = 0;
   stack[top++] = {0.0, 0};
   while (top > 0) {
     auto [distance, index] = stack[--top];
-    if (distance >= best) continue;
+    if (beyond_best(distance)) continue;
     const Node& node = nodes_[size_t(index)];
     if (node.count > 0) {
       for (int k = node.first; k < node.first + node.count; ++k) {
         size_t t = size_t(order_[size_t(k)]);
+        if (beyond_best(box_distance(boxes_[t]))) continue;  // a float test spares most exact ones
         double d =
             point_triangle_distance(p, triangles_.corner(t, 0), triangles_.corner(t, 1), triangles_.corner(t, 2));
         if (d < best) best = d, best_triangle = long(t);
