@@ -120,7 +120,7 @@ class CellTreeBuilder {
   //! side is within 1e-5 of the longest, cut at the box's middle clamped to
   //! the points; returns where the upper half starts.
   size_t split(size_t first, size_t count, const SplitBox& box, int& axis, float& cut) {
-    const float kEps = 0.00001f;
+    constexpr float kEps = 0.00001f;
     float max_span = box.high[0] - box.low[0];
     for (int k = 1; k < 3; ++k) max_span = std::max(max_span, box.high[k] - box.low[k]);
     float max_spread = -1, axis_min = 0, axis_max = 0;

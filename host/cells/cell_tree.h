@@ -9,7 +9,7 @@
 namespace mcquad {
 
 //! The paper's point cells: the leaves of a balanced kd-tree over the cloud
-//! (nanoflann), flattened once into the arrays that both backends read (the
+//! (nanoflann's, built here step for step), flattened once into the arrays that both backends read (the
 //! layout is documented in kernels/shared/mcq_cell_tree.h). Inner nodes keep
 //! tight boxes for ray traversal and nearest-point queries.
 struct CellTree {

@@ -24,9 +24,8 @@ uint64_t spread_bits(uint64_t v) {
 //! Sorts the points of one bucket (places [first, last)) by their Morton
 //! codes, ties in their present order, through the scratch arrays.
 template <typename MortonOf>
-void sort_bucket(std::vector<Eigen::Vector3f>& points, std::vector<Eigen::Vector3f>& normals, size_t first,
-                 size_t last, const MortonOf& morton_of, std::vector<uint64_t>& keys,
-                 std::vector<Eigen::Vector3f>& scratch) {
+void sort_bucket(std::vector<Eigen::Vector3f>& points, std::vector<Eigen::Vector3f>& normals, size_t first, size_t last,
+                 const MortonOf& morton_of, std::vector<uint64_t>& keys, std::vector<Eigen::Vector3f>& scratch) {
   size_t count = last - first;
   if (count < 2) return;
   // The code above the place in the bucket: a bucket holds fewer than 2^32
@@ -47,6 +46,8 @@ void sort_bucket(std::vector<Eigen::Vector3f>& points, std::vector<Eigen::Vector
 
 void sort_spatially(PointCloud& cloud) {
   if (cloud.size() < 2) return;
+  // A bucket's places take 32 bits of its sort keys.
+  if (cloud.size() >= size_t(UINT32_MAX)) throw UnsupportedError("clouds of 2^32 points or more are not supported");
   // The points in the order of their 13-bit-per-axis Morton codes, ties in
   // input order. First a stable counting sort by the codes' top 15 bits
   // into 32,768 buckets (two passes over the points, one copy of them),

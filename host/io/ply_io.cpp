@@ -356,8 +356,9 @@ PointCloud read_binary_vertices(const std::string& path, std::string_view bytes,
                        std::to_string(stride) + " bytes but only " + std::to_string(cursor.remaining()) +
                        " bytes follow");
     const size_t body = cursor.offset();
-    read_binary_vertex_records(path, bytes.data() + body, element, columns, header.format == PlyFormat::kBinaryBig,
-                               [&](size_t read) { file.release_before(body + read); }, cloud);
+    read_binary_vertex_records(
+        path, bytes.data() + body, element, columns, header.format == PlyFormat::kBinaryBig,
+        [&](size_t read) { file.release_before(body + read); }, cloud);
     return cloud;
   }
   throw InputError(path + ": PLY has no vertex element");
