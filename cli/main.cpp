@@ -412,6 +412,16 @@ int main(int argc, char** argv) {
   generate_app->add_option("--holes", shape_options.holes, "patches of radius r left without points")
       ->check(CLI::Range(0, 100))
       ->capture_default_str();
+  generate_app
+      ->add_option("--skeleton-offset", shape_options.skeleton_offset,
+                   "move every skeleton node off-centre by this fraction of its radius (the cloud stays)")
+      ->check(CLI::Range(0.0, 2.0))
+      ->capture_default_str();
+  generate_app
+      ->add_option("--short-ends", shape_options.short_ends,
+                   "pull every skeleton end node back along its chain by this fraction of its radius")
+      ->check(CLI::Range(0.0, 5.0))
+      ->capture_default_str();
 
   std::string skeleton_points, skeleton_output, skeleton_json;
   SkeletonExtractionOptions skeleton_options;

@@ -26,6 +26,7 @@ class ShapeBuilder {
   void tube(const std::vector<int>& ids, double radius, bool open_first = false, bool open_last = false) {
     for (size_t k = 0; k + 1 < ids.size(); ++k) {
       shape.skeleton.edges.push_back({ids[k], ids[k + 1]});
+      bone_radius.push_back(radius);
       Capsule c{shape.skeleton.nodes[ids[k]], shape.skeleton.nodes[ids[k + 1]], radius, false, false};
       c.open_a = open_first && k == 0;
       c.open_b = open_last && k + 2 == ids.size();
@@ -44,8 +45,105 @@ class ShapeBuilder {
     return ids;
   }
 
+  //! A capped limb of the surface whose bone the skeleton does not get (an
+  //! ear no tool put a bone in).
+  void boneless_limb(const Vec& a, const Vec& b, double radius) {
+    shape.surface.add(Capsule{a, b, radius, false, false});
+  }
+
   GeneratedShape shape;
+  std::vector<double> bone_radius;  //!< per skeleton edge
 };
+
+//! The largest radius of each node's bones.
+std::vector<double> node_radii(const SkeletonData& skeleton, const std::vector<double>& bone_radius) {
+  std::vector<double> radius(skeleton.nodes.size(), 0.0);
+  for (size_t e = 0; e < skeleton.edges.size(); ++e)
+    for (int end : skeleton.edges[e]) radius[size_t(end)] = std::max(radius[size_t(end)], bone_radius[e]);
+  return radius;
+}
+
+//! Pulls every end node back along its chain by `fraction` of its radius:
+//! nodes the cut passes are dropped, and the new end node lies exactly that
+//! far from the old one along the chain (at most up to the chain's next
+//! junction or end, less a tenth of its last bone).
+void shorten_ends(SkeletonData& skeleton, std::vector<double>& bone_radius, double fraction) {
+  const size_t n = skeleton.nodes.size();
+  const std::vector<double> radius = node_radii(skeleton, bone_radius);
+  std::vector<std::vector<size_t>> bones_of(n);  // edge indices
+  for (size_t e = 0; e < skeleton.edges.size(); ++e)
+    for (int end : skeleton.edges[e]) bones_of[size_t(end)].push_back(e);
+  auto other = [&](size_t e, size_t v) {
+    return size_t(skeleton.edges[e][0]) == v ? size_t(skeleton.edges[e][1]) : size_t(skeleton.edges[e][0]);
+  };
+  std::vector<bool> dropped_node(n, false), dropped_edge(skeleton.edges.size(), false);
+  std::vector<Vec> moved = skeleton.nodes;
+  for (size_t tip = 0; tip < n; ++tip) {
+    if (bones_of[tip].size() != 1) continue;
+    double left = fraction * radius[tip];
+    size_t end = tip, bone = bones_of[tip][0];
+    for (;;) {
+      size_t next = other(bone, end);
+      double length = (skeleton.nodes[next] - skeleton.nodes[end]).norm();
+      // Drop `end` when the cut passes its neighbour, which then becomes the
+      // end, if that neighbour is a plain chain node.
+      if (left >= length && bones_of[next].size() == 2 && !dropped_node[next]) {
+        dropped_node[end] = dropped_edge[bone] = true;
+        left -= length;
+        bone = bones_of[next][0] == bone ? bones_of[next][1] : bones_of[next][0];
+        end = next;
+        continue;
+      }
+      Vec to = skeleton.nodes[next] - skeleton.nodes[end];
+      moved[end] = skeleton.nodes[end] + std::min(left, 0.9 * to.norm()) * to.normalized();
+      break;
+    }
+  }
+  std::vector<int> index(n, -1);
+  SkeletonData kept;
+  for (size_t v = 0; v < n; ++v) {
+    if (dropped_node[v]) continue;
+    index[v] = int(kept.nodes.size());
+    kept.nodes.push_back(moved[v]);
+  }
+  std::vector<double> kept_radius;
+  for (size_t e = 0; e < skeleton.edges.size(); ++e) {
+    if (dropped_edge[e]) continue;
+    kept.edges.push_back({index[size_t(skeleton.edges[e][0])], index[size_t(skeleton.edges[e][1])]});
+    kept_radius.push_back(bone_radius[e]);
+  }
+  skeleton = std::move(kept);
+  bone_radius = std::move(kept_radius);
+}
+
+//! Moves every node off-centre by `fraction` of its radius, all the same
+//! way (a fixed direction made perpendicular to the node's bones).
+void offset_skeleton(SkeletonData& skeleton, const std::vector<double>& bone_radius, double fraction) {
+  const std::vector<double> radius = node_radii(skeleton, bone_radius);
+  std::vector<Vec> along(skeleton.nodes.size(), Vec::Zero());
+  for (const auto& e : skeleton.edges) {
+    Vec d = (skeleton.nodes[size_t(e[1])] - skeleton.nodes[size_t(e[0])]).normalized();
+    for (int end : e) along[size_t(end)] += (along[size_t(end)].dot(d) < 0 ? -1.0 : 1.0) * d;
+  }
+  const Vec aside = Vec(1.0, 0.6, 0.3).normalized();
+  for (size_t v = 0; v < skeleton.nodes.size(); ++v) {
+    if (along[v].norm() < 1e-12) continue;
+    Vec a = along[v].normalized();
+    Vec across = aside - aside.dot(a) * a;
+    if (across.norm() < 1e-6) across = a.unitOrthogonal();
+    skeleton.nodes[v] += fraction * radius[v] * across.normalized();
+  }
+}
+
+//! Issue 14's skeletons from other tools: end nodes short of the tips, then
+//! nodes off-centre, each by a fraction of the node's radius. Only the
+//! skeleton moves; the surface and the cloud stay.
+void displace_skeleton(SkeletonData& skeleton, std::vector<double> bone_radius, double offset, double short_ends) {
+  if (!(offset >= 0 && offset <= 2) || !(short_ends >= 0 && short_ends <= 5))
+    throw InputError("skeleton offset must be in [0, 2] and short ends in [0, 5] (fractions of the radius)");
+  if (short_ends > 0) shorten_ends(skeleton, bone_radius, short_ends);
+  if (offset > 0) offset_skeleton(skeleton, bone_radius, offset);
+}
 
 void t_shape(ShapeBuilder& b) {
   int junction = b.node(Vec(0, 0, 0));
@@ -183,6 +281,23 @@ void thin_branch(ShapeBuilder& b) {
   b.tube(b.line(junction, Vec(0, -5, 0), 1.0), 1.0);
   b.tube(b.line(junction, Vec(0, 5, 0), 1.0), 1.0);
   b.tube(b.line(junction, 5.0 * Vec(std::sin(M_PI / 3), std::cos(M_PI / 3), 0), 0.5), 0.2);
+}
+
+//! Issue 14's fat body: a body of radius 2.5 whose bone's ends are
+//! junctions deep inside it, four thin legs (radius 0.45), a neck and a
+//! thin tail, and an ear (radius 0.4) with no bone.
+void blob_limbs(ShapeBuilder& b) {
+  int back = b.node(Vec(-2, 0, 0));
+  std::vector<int> body = b.line(back, Vec(2, 0, 0), 1.0);
+  int front = body.back();
+  b.tube(body, 2.5);
+  for (int side : {-1, 1}) {
+    b.tube(b.line(back, Vec(-2.2, 1.6 * side, -6), 1.0), 0.45);
+    b.tube(b.line(front, Vec(2.2, 1.6 * side, -6), 1.0), 0.45);
+  }
+  b.tube(b.line(front, Vec(5.5, 0, 2.5), 1.0), 0.8);
+  b.tube(b.line(back, Vec(-6, 0, 1.5), 1.0), 0.3, false, true);
+  b.boneless_limb(Vec(0.5, 0.8, 2.2), Vec(0.9, 1.2, 4.2), 0.4);
 }
 
 void tight_knot(ShapeBuilder& b) {
@@ -323,22 +438,24 @@ size_t default_points(const std::string& name) {
 }  // namespace
 
 std::vector<std::pair<std::string, std::string>> shape_catalogue() {
-  return {{"t-shape", "the paper's T (Fig. 1): two capped arms and an open leg, radius 1"},
-          {"torus-knot", "tube along a (2,3) torus knot, 413,696 points in the paper's Fig. 7 box"},
-          {"tube-frame", "tubes along the edges of a box: 8 junctions, 5 loops, 182,274 points in the Fig. 6 box"},
-          {"tube", "a straight capped tube"},
-          {"bent-tube", "a bent pipe, open at both ends"},
-          {"torus", "a torus (a pure loop)"},
-          {"y-fork", "a Y: trunk and two thinner branches at --angle degrees"},
-          {"star", "one junction of valence --arms (3..16) at skew angles (from 7: radii and ends mixed)"},
-          {"planar-star", "one junction of valence --arms (3..16) in a plane, uneven angles, mixed radii and ends"},
-          {"octopus", "a thick mantle over eight curling arms (valence 9)"},
-          {"fan", "a trunk and three branches --angle degrees apart in a plane (default 30)"},
-          {"double-junction", "two junctions of valence 4 a short bone apart"},
-          {"theta", "two junctions joined by three chains"},
-          {"parallel-tubes", "two capped tubes whose surfaces pass half a radius apart"},
-          {"thin-branch", "a trunk with a branch a fifth of its radius"},
-          {"tight-knot", "a knot whose tube passes within one radius of itself"}};
+  return {
+      {"t-shape", "the paper's T (Fig. 1): two capped arms and an open leg, radius 1"},
+      {"torus-knot", "tube along a (2,3) torus knot, 413,696 points in the paper's Fig. 7 box"},
+      {"tube-frame", "tubes along the edges of a box: 8 junctions, 5 loops, 182,274 points in the Fig. 6 box"},
+      {"tube", "a straight capped tube"},
+      {"bent-tube", "a bent pipe, open at both ends"},
+      {"torus", "a torus (a pure loop)"},
+      {"y-fork", "a Y: trunk and two thinner branches at --angle degrees"},
+      {"star", "one junction of valence --arms (3..16) at skew angles (from 7: radii and ends mixed)"},
+      {"planar-star", "one junction of valence --arms (3..16) in a plane, uneven angles, mixed radii and ends"},
+      {"octopus", "a thick mantle over eight curling arms (valence 9)"},
+      {"fan", "a trunk and three branches --angle degrees apart in a plane (default 30)"},
+      {"double-junction", "two junctions of valence 4 a short bone apart"},
+      {"theta", "two junctions joined by three chains"},
+      {"parallel-tubes", "two capped tubes whose surfaces pass half a radius apart"},
+      {"thin-branch", "a trunk with a branch a fifth of its radius"},
+      {"tight-knot", "a knot whose tube passes within one radius of itself"},
+      {"blob-limbs", "a fat body with junctions deep inside it, thin legs, a neck, a tail and an ear with no bone"}};
 }
 
 GeneratedShape generate_shape(const std::string& name, const ShapeOptions& options) {
@@ -375,6 +492,8 @@ GeneratedShape generate_shape(const std::string& name, const ShapeOptions& optio
     thin_branch(b);
   else if (name == "tight-knot")
     tight_knot(b);
+  else if (name == "blob-limbs")
+    blob_limbs(b);
   else {
     std::string known;
     for (const auto& entry : shape_catalogue()) known += (known.empty() ? "" : ", ") + entry.first;
@@ -386,6 +505,8 @@ GeneratedShape generate_shape(const std::string& name, const ShapeOptions& optio
   std::mt19937_64 random(options.seed);
   shape.cloud =
       sample_with_defects(shape.surface, options.points ? options.points : default_points(name), options, random);
+  if (options.skeleton_offset != 0 || options.short_ends != 0)
+    displace_skeleton(shape.skeleton, b.bone_radius, options.skeleton_offset, options.short_ends);
   size_t vertices = shape.skeleton.nodes.size();
   shape.independent_cycles = int(shape.skeleton.edges.size()) - int(vertices) + 1;
   return shape;

@@ -19,6 +19,10 @@ struct ShapeOptions {
   double outliers = 0;       //!< fraction of the points replaced by outliers at least a radius off the surface
   double density_ratio = 1;  //!< density falls linearly along x from 1 to 1/ratio (10 = tenfold)
   int holes = 0;             //!< patches of radius r left without points
+  // Skeletons as other tools make them (issue 14's stand-ins); the surface
+  // and the cloud stay as they are:
+  double skeleton_offset = 0;  //!< every node moved off-centre by this fraction of its radius
+  double short_ends = 0;       //!< every end node pulled back along its chain by this fraction of its radius
 };
 
 //! A synthetic cloud with its skeleton and its true surface.

@@ -103,5 +103,45 @@ TEST(Generate, ScanDefectsOutliersDensityAndHoles) {
   EXPECT_LT(largest_gap(test::small_shape("torus", 20000)), 0.3);
 }
 
+// Skeletons as other tools make them: the T's nodes move by half their
+// radius, across their bones; its three end nodes come a radius closer to
+// the junction. The cloud and the true surface do not move.
+TEST(Generate, SkeletonOffCentreAndShortOfTheTips) {
+  GeneratedShape plain = test::small_shape("t-shape", 5000);
+  ShapeOptions off;
+  off.skeleton_offset = 0.5;
+  GeneratedShape moved = test::small_shape("t-shape", 5000, off);
+  ASSERT_EQ(moved.skeleton.nodes.size(), plain.skeleton.nodes.size());
+  EXPECT_EQ(moved.cloud.points, plain.cloud.points);
+  for (size_t v = 0; v < plain.skeleton.nodes.size(); ++v)
+    EXPECT_NEAR((moved.skeleton.nodes[v] - plain.skeleton.nodes[v]).norm(), 0.5, 1e-9) << "node " << v;
+  ShapeOptions short_ends;
+  short_ends.short_ends = 1.0;
+  GeneratedShape shortened = test::small_shape("t-shape", 5000, short_ends);
+  // The T's ends: its arms reach x = -4 and 4, its leg y = -5 (radius 1).
+  auto reach = [](const GeneratedShape& s, int axis, double sign) {
+    double best = -1e9;
+    for (const auto& p : s.skeleton.nodes) best = std::max(best, sign * p[axis]);
+    return best;
+  };
+  EXPECT_NEAR(reach(shortened, 0, 1), 3.0, 1e-9);
+  EXPECT_NEAR(reach(shortened, 0, -1), 3.0, 1e-9);
+  EXPECT_NEAR(reach(shortened, 1, -1), 4.0, 1e-9);
+  EXPECT_EQ(shortened.surface.capsules().size(), plain.surface.capsules().size());
+}
+
+//! issue 14's fat body: one bone fewer in the skeleton than capsules in the
+//! surface (the ear), and the legs' junctions inside the body.
+TEST(Generate, BlobLimbsHasABonelessEarAndJunctionsInsideTheBody) {
+  GeneratedShape blob = test::small_shape("blob-limbs", 5000);
+  EXPECT_EQ(blob.surface.capsules().size(), blob.skeleton.edges.size() + 1);
+  std::vector<int> degree(blob.skeleton.nodes.size(), 0);
+  for (const auto& e : blob.skeleton.edges) ++degree[size_t(e[0])], ++degree[size_t(e[1])];
+  int junctions_inside = 0;
+  for (size_t v = 0; v < degree.size(); ++v)
+    junctions_inside += degree[v] >= 3 && blob.surface.signed_distance(blob.skeleton.nodes[v]) < -2.0;
+  EXPECT_EQ(junctions_inside, 2);
+}
+
 }  // namespace
 }  // namespace mcquad
