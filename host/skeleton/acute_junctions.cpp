@@ -1,5 +1,6 @@
 #include "skeleton/acute_junctions.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -25,6 +26,26 @@ struct EditableSkeleton {
     removed_edge.push_back(false);
   }
 };
+
+//! How much thicker than the rest of its chain a limb's first bone must be
+//! to count as having measured the body it starts in.
+constexpr double kFatFirstBone = 1.5;
+
+//! The radius of the limb along `chain` where it leaves its junction: its
+//! first bone's, unless that bone is far thicker than the rest of the chain
+//! (median of its bones' radii). Then the junction sits inside a fat body
+//! and the first bone took the body's points as its own (issue 14's
+//! blob-limbs: legs of radius 0.45 whose first bones measured 2.4); the
+//! limb's own radius is the chain's.
+double limb_radius(const EditableSkeleton& skeleton, const std::vector<int>& chain) {
+  std::vector<double> radii;
+  for (size_t k = 0; k + 1 < chain.size(); ++k)
+    radii.push_back(skeleton.radius[size_t(skeleton.edge_between(chain[k], chain[k + 1]))]);
+  const double first = radii.front();
+  std::nth_element(radii.begin(), radii.begin() + long(radii.size() / 2), radii.end());
+  const double median = radii[radii.size() / 2];
+  return first > kFatFirstBone * median ? median : first;
+}
 
 //! The chain of nodes from junction `start` through `next` to the next
 //! non-regular node (inclusive).
@@ -189,8 +210,7 @@ TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssign
 
     EditableSkeleton skeleton{g.positions, g.edges, result.bone_radius, std::vector<bool>(g.edges.size(), false)};
     std::vector<int> chain_i = chain_from(g, best_node, best_i), chain_j = chain_from(g, best_node, best_j);
-    double ri = skeleton.radius[skeleton.edge_between(best_node, best_i)];
-    double rj = skeleton.radius[skeleton.edge_between(best_node, best_j)];
+    double ri = limb_radius(skeleton, chain_i), rj = limb_radius(skeleton, chain_j);
     double r = 0.5 * (ri + rj);
     double crotch = r / std::sin(best_angle / 2);          // along the bisector
     double along = crotch / std::cos(best_angle / 2) + r;  // along each bone, past the crotch

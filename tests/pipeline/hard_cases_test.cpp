@@ -24,7 +24,7 @@ struct HardCase {
   bool covered;
   //! Whether at most 0.1 % of the mesh's area faces against the true
   //! surface (issue 20's bound). Not yet in the 30-degree Y's crotch
-  //! (0.53 %), where the thin branch leaves its trunk (2.1 %), at the T's
+  //! (0.53 %), where the thin branch leaves its trunk (0.86 %), at the T's
   //! creases with outliers (0.50 %) or holes (0.31 %), nor under 10 % noise
   //! (0.17 % here, 0.00 % through `mcquad fit`, whose points are sorted and
   //! so sampled differently): docs/HARD_CASES.md.
