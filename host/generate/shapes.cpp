@@ -56,7 +56,7 @@ class ShapeBuilder {
 };
 
 //! The largest radius of each node's bones.
-std::vector<double> node_radii(const SkeletonData& skeleton, const std::vector<double>& bone_radius) {
+std::vector<double> largest_bone_radius_at_nodes(const SkeletonData& skeleton, const std::vector<double>& bone_radius) {
   std::vector<double> radius(skeleton.nodes.size(), 0.0);
   for (size_t e = 0; e < skeleton.edges.size(); ++e)
     for (int end : skeleton.edges[e]) radius[size_t(end)] = std::max(radius[size_t(end)], bone_radius[e]);
@@ -69,7 +69,7 @@ std::vector<double> node_radii(const SkeletonData& skeleton, const std::vector<d
 //! junction or end, less a tenth of its last bone).
 void shorten_ends(SkeletonData& skeleton, std::vector<double>& bone_radius, double fraction) {
   const size_t n = skeleton.nodes.size();
-  const std::vector<double> radius = node_radii(skeleton, bone_radius);
+  const std::vector<double> radius = largest_bone_radius_at_nodes(skeleton, bone_radius);
   std::vector<std::vector<size_t>> bones_of(n);  // edge indices
   for (size_t e = 0; e < skeleton.edges.size(); ++e)
     for (int end : skeleton.edges[e]) bones_of[size_t(end)].push_back(e);
@@ -119,7 +119,7 @@ void shorten_ends(SkeletonData& skeleton, std::vector<double>& bone_radius, doub
 //! Moves every node off-centre by `fraction` of its radius, all the same
 //! way (a fixed direction made perpendicular to the node's bones).
 void offset_skeleton(SkeletonData& skeleton, const std::vector<double>& bone_radius, double fraction) {
-  const std::vector<double> radius = node_radii(skeleton, bone_radius);
+  const std::vector<double> radius = largest_bone_radius_at_nodes(skeleton, bone_radius);
   std::vector<Vec> along(skeleton.nodes.size(), Vec::Zero());
   for (const auto& e : skeleton.edges) {
     Vec d = (skeleton.nodes[size_t(e[1])] - skeleton.nodes[size_t(e[0])]).normalized();
