@@ -161,10 +161,17 @@ class BinaryCursor {
   void skip(size_t n) { offset_ += n; }
 
   double read(int size, char kind) {
+    double value = decode_at(bytes_.data() + offset_, size, kind, swap_);
+    offset_ += size_t(size);
+    return value;
+  }
+
+  //! The scalar of `size` bytes and `kind` at `at`, bytes swapped first when
+  //! the file's byte order is not this machine's.
+  static double decode_at(const char* at, int size, char kind, bool swap) {
     unsigned char raw[8];
-    std::memcpy(raw, bytes_.data() + offset_, size);
-    offset_ += size;
-    if (swap_)
+    std::memcpy(raw, at, size_t(size));
+    if (swap)
       for (int i = 0; i < size / 2; ++i) std::swap(raw[i], raw[size - 1 - i]);
     return decode(raw, size, kind);
   }
@@ -292,11 +299,7 @@ std::vector<BinaryColumn> binary_columns(const PlyElement& element) {
 }
 
 double read_column(const char* record, const BinaryColumn& column, bool swap) {
-  unsigned char raw[8];
-  std::memcpy(raw, record + column.offset, size_t(column.size));
-  if (swap)
-    for (int i = 0; i < column.size / 2; ++i) std::swap(raw[i], raw[column.size - 1 - i]);
-  return BinaryCursor::decode(raw, column.size, column.kind);
+  return BinaryCursor::decode_at(record + column.offset, column.size, column.kind, swap);
 }
 
 //! The vertex records at `body`: only the wanted columns are decoded, a
