@@ -269,6 +269,37 @@ void theta(ShapeBuilder& b) {
   }
 }
 
+//! A stand-in for a slab pierced by holes (the 3holes scan): two rails of
+//! radius 1 joined by four rungs, the holes between them 0.8 wide, narrower
+//! than the tubes: bands of distance pass each hole in less than two radii.
+void ladder(ShapeBuilder& b) {
+  constexpr double kRailOffset = 1.4, kRungSpacing = 2.8;
+  std::vector<int> top, bottom;
+  for (int k = 0; k < 4; ++k) {
+    double x = (k - 1.5) * kRungSpacing;
+    top.push_back(b.node(Vec(x, kRailOffset, 0)));
+    bottom.push_back(b.node(Vec(x, -kRailOffset, 0)));
+    b.tube({top.back(), bottom.back()}, 1.0);
+  }
+  b.tube(top, 1.0);
+  b.tube(bottom, 1.0);
+}
+
+//! A stand-in for the kitten: a fat body (radius 2.5) whose thick tail
+//! (radius 1.3) leaves it and comes back into it a short way on, closing a
+//! loop whose two junctions lie inside the body less than a body radius
+//! apart; a head.
+void tail_loop(ShapeBuilder& b) {
+  std::vector<int> body = b.line(b.node(Vec(-6, 0, 0)), Vec(2, 0, 0), 1.0);  // a node every unit
+  b.tube(body, 2.5);
+  b.tube(b.line(body.back(), Vec(5, 0, 2), 1.0), 1.5);
+  std::vector<int> tail{body[5]};  // at x = -1
+  for (const Vec& p : {Vec(-3, 0, -3.5), Vec(-2.5, 0, -6.5), Vec(0, 0, -7.5), Vec(2.5, 0, -6), Vec(2, 0, -3)})
+    tail.push_back(b.node(p));
+  tail.push_back(body[7]);  // at x = 1
+  b.tube(tail, 1.3);
+}
+
 void parallel_tubes(ShapeBuilder& b) {
   // Two capped tubes of radius 1 whose surfaces pass half a radius apart.
   b.tube(b.line(b.node(Vec(-1.25, 0, -4)), Vec(-1.25, 0, 4), 1.0), 1.0);
@@ -431,6 +462,7 @@ size_t default_points(const std::string& name) {
   if (name == "torus-knot") return 413696;
   if (name == "tube-frame") return 182274;
   if (name == "t-shape" || name == "theta") return 60000;
+  if (name == "ladder") return 200000;  // as dense as the 3holes scan: 9 voxels across a hole
   if (name == "tube") return 20000;
   return 40000;
 }
@@ -455,7 +487,9 @@ std::vector<std::pair<std::string, std::string>> shape_catalogue() {
       {"parallel-tubes", "two capped tubes whose surfaces pass half a radius apart"},
       {"thin-branch", "a trunk with a branch a fifth of its radius"},
       {"tight-knot", "a knot whose tube passes within one radius of itself"},
-      {"blob-limbs", "a fat body with junctions deep inside it, thin legs, a neck, a tail and an ear with no bone"}};
+      {"blob-limbs", "a fat body with junctions deep inside it, thin legs, a neck, a tail and an ear with no bone"},
+      {"ladder", "two rails joined by four rungs: three holes narrower than the tubes (a pierced slab)"},
+      {"tail-loop", "a fat body whose thick tail comes back into it: a loop between two junctions inside the body"}};
 }
 
 GeneratedShape generate_shape(const std::string& name, const ShapeOptions& options) {
@@ -494,6 +528,10 @@ GeneratedShape generate_shape(const std::string& name, const ShapeOptions& optio
     tight_knot(b);
   else if (name == "blob-limbs")
     blob_limbs(b);
+  else if (name == "ladder")
+    ladder(b);
+  else if (name == "tail-loop")
+    tail_loop(b);
   else {
     std::string known;
     for (const auto& entry : shape_catalogue()) known += (known.empty() ? "" : ", ") + entry.first;

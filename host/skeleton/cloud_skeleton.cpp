@@ -29,8 +29,8 @@ constexpr double kSpurRadii = 1.8;
 // (fronts meeting on a loop leave such bulges; an open limb's rim rises its
 // length above its junction, a capped one a radius more).
 constexpr double kSpurRise = 1.5;
-// A cycle spanning less geodesic distance than this many tube radii is a
-// split and merge around a hole or a noisy patch, not a handle.
+// A cycle of the level-set graph spanning less geodesic distance than this
+// many tube radii needs more evidence that it is a handle (is_a_handle).
 constexpr double kCycleRadii = 2.0;
 // Pieces whose widest angular gap exceeds this are arcs, not rings.
 constexpr double kArcGap = M_PI / 2;
@@ -91,9 +91,44 @@ double median(std::vector<double> values) {
   return values[values.size() / 2];
 }
 
-//! Removes, for every cycle of the spanning tree (breadth-first, in node
-//! order) that spans too little geodesic distance, its closing edge.
-void remove_short_cycles(Extraction& x, double band_width) {
+//! Whether a cycle of the level-set graph is a handle, judged by its pieces
+//! between the split and the merge. A handle's two branches are tubes of
+//! their own, each band crossing them as a ring however short the hole
+//! between them (a slab pierced by holes); around a hole in the scan or a
+//! noisy patch one ring splits into arcs. A cycle spanning less geodesic
+//! distance than kCycleRadii tube radii must be mostly rings on both
+//! branches; a longer one (a loop round a torus with holes in its scan:
+//! 8 rings in 17 pieces measured) at least a third of rings on each.
+bool is_a_handle(const Extraction& x, const std::vector<int>& branch_a, const std::vector<int>& branch_b) {
+  auto band_below = [&](int v, int w) { return x.node(v).band < x.node(w).band; };
+  int merge = -1, split_band = std::numeric_limits<int>::max();
+  std::vector<double> radii;  // the median: a cycle through a fat body has a few huge bands
+  for (const auto* branch : {&branch_a, &branch_b})
+    for (int v : *branch) {
+      if (merge < 0 || band_below(merge, v)) merge = v;
+      split_band = std::min(split_band, x.node(v).band - 1);
+      radii.push_back(x.node(v).radius);
+    }
+  if (merge < 0) return false;
+  auto count = [&](const std::vector<int>& branch) {
+    std::array<size_t, 2> rings_pieces{0, 0};
+    for (int v : branch)
+      if (v != merge) {
+        rings_pieces[0] += x.node(v).widest_gap <= kArcGap;
+        ++rings_pieces[1];
+      }
+    return rings_pieces;
+  };
+  auto [rings_a, pieces_a] = count(branch_a);
+  auto [rings_b, pieces_b] = count(branch_b);
+  double span = double(x.node(merge).band - split_band + 1) * x.band_width;
+  if (span >= kCycleRadii * median(radii)) return 3 * rings_a >= pieces_a && 3 * rings_b >= pieces_b;
+  return 2 * rings_a >= pieces_a && 2 * rings_b >= pieces_b && 2 * (rings_a + rings_b) > pieces_a + pieces_b;
+}
+
+//! Removes the closing edge of every cycle of the spanning tree
+//! (breadth-first from the root's band, in node order) that is no handle.
+void remove_false_cycles(Extraction& x) {
   size_t n = x.work.adjacent.size();
   std::vector<int> parent(n, -2);
   std::vector<std::array<int, 2>> closing;
@@ -120,19 +155,8 @@ void remove_short_cycles(Extraction& x, double band_width) {
     int meet = b;
     for (; meet >= 0 && !on_a.count(meet); meet = parent[size_t(meet)]) up_b.push_back(meet);
     if (meet < 0) continue;
-    int lowest = std::numeric_limits<int>::max(), highest = std::numeric_limits<int>::min();
-    std::vector<double> radii;  // the median: a cycle through a fat body has a few huge bands
-    auto visit = [&](int v) {
-      lowest = std::min(lowest, x.node(v).band);
-      highest = std::max(highest, x.node(v).band);
-      radii.push_back(x.node(v).radius);
-    };
-    for (int v : up_a) {
-      visit(v);
-      if (v == meet) break;
-    }
-    for (int v : up_b) visit(v);
-    if (double(highest - lowest + 1) * band_width < kCycleRadii * median(radii)) x.work.remove_edge(a, b);
+    up_a.erase(std::find(up_a.begin(), up_a.end(), meet), up_a.end());
+    if (!is_a_handle(x, up_a, up_b)) x.work.remove_edge(a, b);
   }
 }
 
@@ -466,13 +490,23 @@ void place_junctions(Extraction& x, std::vector<Chain>& chains) {
     for (const auto& limb : limbs_of({int(v)}, {})) limb_nodes.push_back(limb.nodes);
     radius[v] = junction_radius(x, limb_nodes, x.position[v]);
   }
+  // Chains between the regions of a and b: two or more close a cycle that
+  // remove_false_cycles kept as a handle, which joining would collapse.
+  auto links_between = [&](int a, int b) {
+    size_t ra = regions.find(size_t(a)), rb = regions.find(size_t(b)), links = 0;
+    for (const auto& chain : chains) {
+      size_t front = regions.find(size_t(chain.nodes.front())), back = regions.find(size_t(chain.nodes.back()));
+      links += (front == ra && back == rb) || (front == rb && back == ra);
+    }
+    return links;
+  };
   // Two junction nodes joined by a short chain are one branching region when
   // the axes of all their other limbs pass through one point (within half a
   // radius); two junctions a short bone apart (the double-junction shape)
   // have axes meeting at two points.
   for (size_t c = 0; c < chains.size(); ++c) {
     int a = chains[c].nodes.front(), b = chains[c].nodes.back();
-    if (a == b || !is_junction(a) || !is_junction(b)) continue;
+    if (a == b || !is_junction(a) || !is_junction(b) || links_between(a, b) > 1) continue;
     double r = std::max(radius[size_t(a)], radius[size_t(b)]);
     double length = chain_length(x, chains[c].nodes);
     if (length >= 4 * r) continue;
@@ -498,7 +532,9 @@ void place_junctions(Extraction& x, std::vector<Chain>& chains) {
   for (int pass = 0; pass < 2; ++pass)
     for (size_t c = 0; c < chains.size(); ++c) {
       int a = chains[c].nodes.front(), b = chains[c].nodes.back();
-      if (a == b || !is_junction(a) || !is_junction(b) || regions.find(size_t(a)) == regions.find(size_t(b))) continue;
+      if (a == b || !is_junction(a) || !is_junction(b) || regions.find(size_t(a)) == regions.find(size_t(b)) ||
+          links_between(a, b) > 1)
+        continue;
       std::set<int> members = members_of(size_t(a), size_t(b));
       double r = 0;
       Eigen::Vector3d middle = Eigen::Vector3d::Zero();
@@ -518,6 +554,18 @@ void place_junctions(Extraction& x, std::vector<Chain>& chains) {
   for (size_t v = 0; v < n; ++v)
     if (x.work.alive[v] && is_junction(int(v))) clusters[int(regions.find(v))].insert(int(v));
 
+  // Rings a cycle's chain must keep however near its junctions they lie: two
+  // on a loop back to its own node, one on each of two parallel chains, so
+  // that the handle stays a cycle of distinct bones. (A link between two
+  // nodes of one region is no handle: it goes.)
+  std::vector<size_t> rings_to_keep(chains.size(), 0);
+  for (size_t c = 0; c < chains.size(); ++c) {
+    int a = chains[c].nodes.front(), b = chains[c].nodes.back();
+    if (a == b)
+      rings_to_keep[c] = 2;
+    else if (regions.find(size_t(a)) != regions.find(size_t(b)) && links_between(a, b) > 1)
+      rings_to_keep[c] = 1;
+  }
   std::set<size_t> dropped;
   for (auto& [leader, members] : clusters) {
     double r = 0;
@@ -554,8 +602,12 @@ void place_junctions(Extraction& x, std::vector<Chain>& chains) {
         return (p - centre).dot(out) < 0.75 * r || (p - centre).norm() < 1.5 * r;
       };
       while (inner + 1 < limb.nodes.size() && inside(x.position[size_t(limb.nodes[inner])])) ++inner;
-      // limb.nodes[1 .. inner) are inside; erase them from the chain's matching end.
-      size_t count = std::min(inner - 1, nodes.size() - 2);  // the other end may have been trimmed already
+      // limb.nodes[1 .. inner) are inside; erase them from the chain's matching
+      // end (the other end may have been trimmed already), but at most half
+      // of the inner rings beyond those the chain must keep.
+      size_t keep = rings_to_keep[limb.chain];
+      size_t count = std::min(inner - 1, nodes.size() - 2);
+      if (keep > 0) count = std::min(count, nodes.size() - 2 >= keep ? (nodes.size() - 2 - keep) / 2 : 0);
       if (count == 0 || nodes.size() < 3) continue;
       if (limb.from_front)
         nodes.erase(nodes.begin() + 1, nodes.begin() + 1 + long(count));
@@ -756,7 +808,7 @@ ExtractedSkeleton extract_skeleton(const PointCloud& cloud, const std::string& s
   PointIndex<double> surface(surface_points);
   Extraction x{voxels, levels, surface, surface_points, band_width, WorkGraph(levels), {}};
   for (const auto& node : levels.nodes) x.position.push_back(node.centre);
-  remove_short_cycles(x, band_width);
+  remove_false_cycles(x);
   prune_spurs(x);
   std::vector<Chain> chains = trace_chains(x);
   centre_on_cross_sections(x, chains);

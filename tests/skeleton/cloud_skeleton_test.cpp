@@ -87,8 +87,9 @@ struct Case {
 
 std::vector<Case> cases() {
   std::vector<Case> all;
-  for (const char* name : {"t-shape", "torus-knot", "tube-frame", "tube", "bent-tube", "torus", "y-fork", "octopus",
-                           "fan", "double-junction", "theta", "parallel-tubes", "thin-branch", "tight-knot"})
+  for (const char* name :
+       {"t-shape", "torus-knot", "tube-frame", "tube", "bent-tube", "torus", "y-fork", "octopus", "fan",
+        "double-junction", "theta", "parallel-tubes", "thin-branch", "tight-knot", "ladder", "tail-loop"})
     all.push_back({name, ShapeOptions{}, name});
   for (int arms = 3; arms <= 9; ++arms) {
     ShapeOptions o;
@@ -121,7 +122,7 @@ std::vector<Case> cases() {
 bool known_hard(const std::string& label) {
   for (const char* hard : {"tube-frame", "tube-frame+noise", "tube-frame+outliers", "tube-frame+holes", "octopus",
                            "fan", "theta", "tight-knot", "planar-star-6", "planar-star-7", "planar-star-8",
-                           "planar-star-9", "y-fork-15", "y-fork-30", "star+holes"})
+                           "planar-star-9", "y-fork-15", "y-fork-30", "star+holes", "ladder", "tail-loop"})
     if (label == hard) return true;
   return false;
 }
@@ -178,6 +179,60 @@ INSTANTIATE_TEST_SUITE_P(GeneratedShapes, ExtractedSkeletonOf, testing::ValuesIn
 class KnownHardSkeletonOf : public testing::TestWithParam<Case> {};
 TEST_P(KnownHardSkeletonOf, DISABLED_HasTheTrueTopologyCentredAndCovering) { expect_true_skeleton(GetParam()); }
 INSTANTIATE_TEST_SUITE_P(GeneratedShapes, KnownHardSkeletonOf, testing::ValuesIn(hard_cases()), case_name);
+
+Topology extracted_topology(const std::string& shape_name, const ShapeOptions& options) {
+  GeneratedShape shape = generate_shape(shape_name, options);
+  return topology_of(extract_skeleton(shape.cloud, shape_name).skeleton);
+}
+
+// The 3holes scan's stand-in: holes narrower than the tubes around them, so
+// that the bands of distance pass each in less than two tube radii (the
+// extraction had taken such cycles for splits around scan holes and lost
+// all three). Its junctions are not the true ones (one node per rung where
+// the truth has one per rail and rung), so only ends and cycles are held.
+TEST(CloudSkeleton, KeepsHandlesNarrowerThanTheirTubes) {
+  for (uint64_t seed = 1; seed <= 3; ++seed) {
+    ShapeOptions options;
+    options.seed = seed;
+    Topology found = extracted_topology("ladder", options);
+    EXPECT_EQ(found.ends, 0) << "seed " << seed;
+    EXPECT_EQ(found.cycles, 3) << "seed " << seed;
+    EXPECT_EQ(found.components, 1) << "seed " << seed;
+  }
+}
+
+// The kitten's stand-in: a thick tail leaving a fat body and coming back
+// into it under one body radius on. Its two junctions were joined as one
+// branching region, which collapsed the loop on four seeds of five.
+TEST(CloudSkeleton, KeepsALoopWhoseJunctionsLieInsideAFatBody) {
+  for (uint64_t seed = 1; seed <= 5; ++seed) {
+    ShapeOptions options;
+    options.seed = seed;
+    Topology found = extracted_topology("tail-loop", options);
+    EXPECT_EQ(found.cycles, 1) << "seed " << seed;
+    EXPECT_EQ(found.components, 1) << "seed " << seed;
+  }
+}
+
+// Ten holes of a tube radius each on a torus and a bent pipe: the bands split
+// round them into arcs, which must not become handles. Measured: 6 of the 10
+// clouds get the true cycle count (torus seeds 1, 2, 4; pipe seeds 1, 4, 5);
+// judging cycles by the distance they span alone gave 4.
+TEST(CloudSkeleton, ScanHolesMakeFewFalseHandles) {
+  int right = 0;
+  for (const char* name : {"torus", "bent-tube"})
+    for (uint64_t seed = 1; seed <= 5; ++seed) {
+      ShapeOptions options;
+      options.seed = seed;
+      options.holes = 10;
+      GeneratedShape shape = generate_shape(name, options);
+      try {
+        right += topology_of(extract_skeleton(shape.cloud, name).skeleton).cycles == topology_of(shape.skeleton).cycles;
+      } catch (const UnsupportedError&) {  // the pipe's seed 2 reads as a sheet: not a right count
+      }
+    }
+  EXPECT_GE(right, 6);
+}
 
 TEST(CloudSkeleton, IsDeterministicAndScaleFree) {
   ShapeOptions options;
