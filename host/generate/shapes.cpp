@@ -300,6 +300,20 @@ void tail_loop(ShapeBuilder& b) {
   b.tube(tail, 1.3);
 }
 
+//! A stand-in for the elephant: a fat body (radius 3) with short limbs, two
+//! arms and two legs of radius 1 and a head of radius 1.5, each sticking out
+//! of the body about two of its own diameters: judged by the body's radius
+//! at their junctions they look like bumps.
+void stubby_limbs(ShapeBuilder& b) {
+  int shoulders = b.node(Vec(0, 1, 0)), hips = b.node(Vec(0, -3, 0));
+  b.tube({hips, shoulders}, 3.0);
+  for (int side : {-1, 1}) {
+    b.tube(b.line(shoulders, Vec(7.0 * side, 1.5, 0), 1.5), 1.0);
+    b.tube(b.line(hips, Vec(2.5 * side, -8.5, 0), 1.5), 1.0);
+  }
+  b.tube(b.line(shoulders, Vec(0, 7, 1), 1.5), 1.5);
+}
+
 void parallel_tubes(ShapeBuilder& b) {
   // Two capped tubes of radius 1 whose surfaces pass half a radius apart.
   b.tube(b.line(b.node(Vec(-1.25, 0, -4)), Vec(-1.25, 0, 4), 1.0), 1.0);
@@ -489,6 +503,7 @@ std::vector<std::pair<std::string, std::string>> shape_catalogue() {
       {"tight-knot", "a knot whose tube passes within one radius of itself"},
       {"blob-limbs", "a fat body with junctions deep inside it, thin legs, a neck, a tail and an ear with no bone"},
       {"ladder", "two rails joined by four rungs: three holes narrower than the tubes (a pierced slab)"},
+      {"stubby-limbs", "a fat body with short limbs sticking out about two of their diameters"},
       {"tail-loop", "a fat body whose thick tail comes back into it: a loop between two junctions inside the body"}};
 }
 
@@ -530,6 +545,8 @@ GeneratedShape generate_shape(const std::string& name, const ShapeOptions& optio
     blob_limbs(b);
   else if (name == "ladder")
     ladder(b);
+  else if (name == "stubby-limbs")
+    stubby_limbs(b);
   else if (name == "tail-loop")
     tail_loop(b);
   else {

@@ -29,6 +29,11 @@ constexpr double kSpurRadii = 1.8;
 // (fronts meeting on a loop leave such bulges; an open limb's rim rises its
 // length above its junction, a capped one a radius more).
 constexpr double kSpurRise = 1.5;
+// Whatever the junction's radius, a spur is a limb when its tip sticks out of
+// the ball inscribed at its junction by this many times its own radius (an
+// elephant's arms and trunk leave a head and chest three to six times their
+// width; a blunt end of a slab, a bump, 1.2 to 1.7 times).
+constexpr double kLimbProtrusion = 2.0;
 // A cycle of the level-set graph spanning less geodesic distance than this
 // many tube radii needs more evidence that it is a handle (is_a_handle).
 constexpr double kCycleRadii = 2.0;
@@ -213,8 +218,40 @@ double spur_radius(const Extraction& x, int junction, int spur_first) {
   return thinnest == std::numeric_limits<double>::max() ? inscribed : std::max(inscribed, thinnest);
 }
 
-//! Prunes spurs (an end whose tip is within kSpurRadii junction radii of its
-//! junction), the shortest at each junction first, until none is left.
+//! Whether a spur (`path` from its tip to its junction) is a limb in its
+//! own right: three pieces or more, mostly rings, whose tip sticks out of
+//! the junction's inscribed ball by kLimbProtrusion times their median
+//! radius. The junction's radius alone prunes thin limbs of a fat body.
+bool is_a_limb(const Extraction& x, const std::vector<int>& path) {
+  if (path.size() < 4) return false;
+  std::vector<double> radii;
+  size_t rings = 0;
+  for (size_t k = 1; k + 1 < path.size(); ++k) {  // not the tip's cap, not the junction
+    radii.push_back(x.node(path[k]).radius);
+    rings += x.node(path[k]).widest_gap <= kArcGap;
+  }
+  const Eigen::Vector3d& tip = x.position[size_t(path.front())];
+  const Eigen::Vector3d& junction = x.position[size_t(path.back())];
+  double protrusion = (tip - junction).norm() - x.inscribed_radius(junction);
+  return 2 * rings >= radii.size() && protrusion >= kLimbProtrusion * median(radii);
+}
+
+//! Whether a spur is short for its junction: its tip within kSpurRadii
+//! junction radii of it, or within 2.5 and rising less than kSpurRise
+//! above it; or a single piece that is an arc (a sliver of a band beside
+//! the junction, e.g. along a palm's edge), however far it reaches.
+bool is_a_bump(const Extraction& x, const std::vector<int>& path) {
+  int tip = path.front(), junction = path.back();
+  double reach = (x.position[size_t(tip)] - x.position[size_t(junction)]).norm();
+  double rise = std::abs(x.node(tip).band - x.node(junction).band) * x.band_width;
+  double radius = spur_radius(x, junction, path[path.size() - 2]);
+  bool short_spur = reach < kSpurRadii * radius || (rise < kSpurRise * radius && reach < 2.5 * radius);
+  bool sliver = path.size() == 2 && x.node(tip).widest_gap > kArcGap;
+  return short_spur || sliver;
+}
+
+//! Prunes spurs that are bumps and not limbs, the shortest at each junction
+//! first, until none is left.
 void prune_spurs(Extraction& x) {
   for (bool changed = true; changed;) {
     changed = false;
@@ -223,14 +260,8 @@ void prune_spurs(Extraction& x) {
       if (!x.work.alive[v] || x.work.degree(int(v)) != 1) continue;
       std::vector<int> path = walk_from_end(x, int(v));
       int junction = path.back();
-      if (x.work.degree(junction) < 3) continue;
-      // Short either way: straight from the junction, or in geodesic distance
-      // from where the bands split (a bulge at a corner can sit far from the
-      // split yet rise little above it).
+      if (x.work.degree(junction) < 3 || !is_a_bump(x, path) || is_a_limb(x, path)) continue;
       double reach = (x.position[v] - x.position[size_t(junction)]).norm();
-      double rise = std::abs(x.node(int(v)).band - x.node(junction).band) * x.band_width;
-      double radius = spur_radius(x, junction, path[path.size() - 2]);
-      if (reach >= kSpurRadii * radius && (rise >= kSpurRise * radius || reach >= 2.5 * radius)) continue;
       auto found = shortest.find(junction);
       if (found == shortest.end() || reach < found->second.first) shortest[junction] = {reach, path};
     }
