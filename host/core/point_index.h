@@ -11,24 +11,37 @@
 
 namespace mcquad {
 
+//! The subsample the spacing quantiles are taken over: every point at a
+//! stride giving about 2000 of them (enough for a quantile).
+inline std::vector<size_t> neighbour_spacing_sample(size_t point_count) {
+  std::vector<size_t> sample;
+  size_t stride = std::max<size_t>(1, point_count / 2000);
+  for (size_t i = 0; i < point_count; i += stride) sample.push_back(i);
+  return sample;
+}
+
+//! The quantile (0.5: the median) of `values`; 0 when there are none.
+inline double quantile_of(std::vector<double> values, double quantile) {
+  if (values.empty()) return 0.0;
+  auto at = values.begin() + long(std::min(values.size() - 1, size_t(quantile * double(values.size()))));
+  std::nth_element(values.begin(), at, values.end());
+  return *at;
+}
+
 //! A quantile (0.5: the median) of the distance from a point to its nearest
-//! neighbour, over a deterministic subsample of about 2000 points (enough
-//! for it). `second_nearest2(p)` gives the squared distance from one of the
-//! points to its second nearest among them (the nearest being itself), or
-//! infinity when there is none.
+//! neighbour, over the subsample of neighbour_spacing_sample.
+//! `second_nearest2(p)` gives the squared distance from one of the points to
+//! its second nearest among them (the nearest being itself), or infinity
+//! when there is none.
 template <typename Point, typename SecondNearest2>
 double neighbour_spacing_quantile(const std::vector<Point>& points, const SecondNearest2& second_nearest2,
                                   double quantile) {
   std::vector<double> gaps;
-  size_t stride = std::max<size_t>(1, points.size() / 2000);
-  for (size_t i = 0; i < points.size(); i += stride) {
+  for (size_t i : neighbour_spacing_sample(points.size())) {
     double d2 = double(second_nearest2(points[i]));
     if (std::isfinite(d2)) gaps.push_back(std::sqrt(d2));
   }
-  if (gaps.empty()) return 0.0;
-  auto at = gaps.begin() + long(std::min(gaps.size() - 1, size_t(quantile * double(gaps.size()))));
-  std::nth_element(gaps.begin(), at, gaps.end());
-  return *at;
+  return quantile_of(std::move(gaps), quantile);
 }
 
 //! Nearest-neighbour index over a vector of 3D points (nanoflann through an

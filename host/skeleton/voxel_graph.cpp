@@ -7,7 +7,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "core/point_index.h"
+#include "core/grid_spacing.h"
 
 namespace mcquad {
 namespace {
@@ -67,9 +67,7 @@ double voxel_size_for(const std::vector<Eigen::Vector3f>& points, size_t target_
   return size;
 }
 
-double sparse_spacing(const std::vector<Eigen::Vector3f>& points) {
-  return PointIndex<float>(points).spacing_quantile(0.9);
-}
+double sparse_spacing(const std::vector<Eigen::Vector3f>& points) { return grid_spacing_quantile(points, 0.9); }
 
 VoxelGraph build_voxel_graph(const std::vector<Eigen::Vector3f>& points, double voxel_size) {
   VoxelGraph graph;
