@@ -125,6 +125,15 @@ OrientedSample oriented_sample(const PointCloud& cloud, size_t max_points) {
   return sample;
 }
 
+void sort_spatially(OrientedSample& sample) {
+  PointCloud cloud;  // moved in and out: no copy
+  cloud.points = std::move(sample.points);
+  cloud.normals = std::move(sample.normals);
+  sort_spatially(cloud);
+  sample.points = std::move(cloud.points);
+  sample.normals = std::move(cloud.normals);
+}
+
 void check_point_cloud(const PointCloud& cloud, const std::string& name) {
   if (cloud.empty()) throw InputError(name + ": the point cloud is empty");
   for (size_t i = 0; i < cloud.size(); ++i)

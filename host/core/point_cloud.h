@@ -52,6 +52,8 @@ OrientedSample oriented_sample(const PointCloud& cloud, size_t max_points = 1000
 //! touches far fewer cache lines. Scans come in arbitrary order, and no
 //! stage needs the original one.
 void sort_spatially(PointCloud& cloud);
+//! The same for a sample of oriented points, in place.
+void sort_spatially(OrientedSample& sample);
 
 //! InputError naming `name` for a cloud a fit cannot start from: empty, a
 //! non-finite coordinate (the first one's index given), or normals that are

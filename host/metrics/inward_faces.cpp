@@ -49,19 +49,13 @@ std::vector<int> inward_face_indices(const QuadMesh& mesh, const SkeletonGraph& 
 }
 
 std::vector<int> faces_against_normals(const QuadMesh& mesh, const OrientedSample& oriented) {
-  // Sorted along a Morton curve first: a reader's sample comes in the scan's
-  // order, and the index over it builds 3x faster in spatial order.
-  PointCloud sorted;
-  sorted.points = oriented.points;
-  sorted.normals = oriented.normals;
-  sort_spatially(sorted);
-  PointIndex<float> index(sorted.points);
+  PointIndex<float> index(oriented.points);
   std::vector<char> against(mesh.n_faces(), 0);
 #pragma omp parallel for schedule(static)
   for (long f = 0; f < long(mesh.n_faces()); ++f) {
     Eigen::Vector3d normal = face_vector_area(mesh, mesh.face_handle(int(f)));
     long nearest = index.nearest(face_centroid(mesh, int(f)).cast<float>()).first;
-    if (nearest >= 0) against[size_t(f)] = normal.dot(sorted.normals[size_t(nearest)].cast<double>()) < 0;
+    if (nearest >= 0) against[size_t(f)] = normal.dot(oriented.normals[size_t(nearest)].cast<double>()) < 0;
   }
   std::vector<int> faces;
   for (size_t f = 0; f < against.size(); ++f)

@@ -10,6 +10,7 @@ namespace mcquad {
 MeshMeasurement measure_mesh(const QuadMesh& mesh, const PointCloud& cloud, const SkeletonData* skeleton,
                              const std::string& skeleton_name, size_t leaf_size) {
   OrientedSample oriented = oriented_sample(cloud);
+  sort_spatially(oriented);  // its index builds 3x faster in spatial order
   MeshMeasurement result;
   QualityMetrics quality;
   if (skeleton) {
