@@ -478,10 +478,26 @@ void place_junctions(Extraction& x, std::vector<Chain>& chains) {
   };
   // Where the axes of a narrow fork meet can be several radii from where its
   // bands split; beyond that, or outside the body, they are not axes.
+  // Where the axes meet outside the body (tangents of limbs that bend away
+  // from the hub, as a theta's arcs leave its poles), the junction is the
+  // deepest point between the band's centre and that meeting point.
   auto meeting_point = [&](const std::vector<Line>& lines, const Eigen::Vector3d& start, double r) {
     if (lines.size() < 2) return start;
     Eigen::Vector3d meet = nearest_to_lines(lines, start);
-    return (meet - start).norm() < 4 * r && x.inscribed_radius(meet) >= 0.5 * r ? meet : start;
+    if ((meet - start).norm() >= 4 * r) return start;
+    if (x.inscribed_radius(meet) >= 0.5 * r) return meet;
+    Eigen::Vector3d deepest = start;
+    double depth = x.inscribed_radius(start);
+    constexpr int kSteps = 16;
+    for (int k = 1; k < kSteps; ++k) {
+      Eigen::Vector3d p = start + (meet - start) * (double(k) / kSteps);
+      double d = x.inscribed_radius(p);
+      if (d > depth) {
+        depth = d;
+        deepest = p;
+      }
+    }
+    return deepest;
   };
   auto farthest_axis = [](const std::vector<Line>& lines, const Eigen::Vector3d& p) {
     double farthest = 0;
