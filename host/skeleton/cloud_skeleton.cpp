@@ -312,12 +312,33 @@ std::vector<Chain> trace_chains(const Extraction& x) {
 //! warped where a limb branches off or the tube bends, and its centre leans;
 //! the slice perpendicular to the chain does not. Twice, since the chain's
 //! tangent improves with its nodes.
+//! Moves every inner node of a chain whose piece is an arc (the bands
+//! around the root, where they start as a patch on one side of the tube)
+//! and lies more than half a radius off the straight line between the
+//! nearest inner ring nodes on either side onto that line: an arc's circle
+//! can lie off the tube altogether (a frame's edge: 1.9 radii out).
+void bridge_arcs(Extraction& x, const std::vector<int>& nodes) {
+  auto is_ring = [&](size_t k) { return x.node(nodes[k]).widest_gap <= kArcGap; };
+  for (size_t k = 1; k + 1 < nodes.size(); ++k) {
+    if (is_ring(k)) continue;
+    size_t before = k, after = k;
+    while (before > 1 && !is_ring(before)) --before;
+    while (after + 2 < nodes.size() && !is_ring(after)) ++after;
+    if (!is_ring(before) || !is_ring(after) || before == k || after == k) continue;
+    double t = double(k - before) / double(after - before);
+    Eigen::Vector3d bridged = (1 - t) * x.position[size_t(nodes[before])] + t * x.position[size_t(nodes[after])];
+    double r = 0.5 * (x.node(nodes[before]).radius + x.node(nodes[after]).radius);
+    if ((x.position[size_t(nodes[k])] - bridged).norm() > 0.5 * r) x.position[size_t(nodes[k])] = bridged;
+  }
+}
+
 void centre_on_cross_sections(Extraction& x, const std::vector<Chain>& chains) {
   const double half_slab = 0.75 * x.voxels.voxel_size;
   const VoxelGraph& graph = x.voxels;
   std::vector<Eigen::Vector3d> slice;
   std::vector<uint32_t> reached;
   std::vector<char> seen(graph.size(), 0);
+  for (const auto& chain : chains) bridge_arcs(x, chain.nodes);
   for (int pass = 0; pass < 2; ++pass) {
     for (const auto& chain : chains) {
       const std::vector<int>& nodes = chain.nodes;
