@@ -300,9 +300,20 @@ std::vector<Chain> trace_chains(const Extraction& x) {
       chains.push_back(walk(int(v), w));
     }
   }
-  for (size_t v = 0; v < n; ++v) {  // pure loops of regular nodes
+  // Pure loops of regular nodes, each from its roundest piece: the loop's
+  // first node is its key node, which the cross sections do not move, and
+  // where the root lies on the loop its piece is a patch, not a ring.
+  for (size_t v = 0; v < n; ++v) {
     if (!x.work.alive[v] || visited[v] || x.work.degree(int(v)) != 2) continue;
-    chains.push_back(walk(int(v), *x.work.adjacent[v].begin()));
+    int start = int(v), previous = -1, current = int(v);
+    do {
+      if (x.node(current).widest_gap < x.node(start).widest_gap) start = current;
+      int next = *x.work.adjacent[size_t(current)].begin();
+      if (next == previous) next = *x.work.adjacent[size_t(current)].rbegin();
+      previous = current;
+      current = next;
+    } while (current != int(v) && x.work.degree(current) == 2);
+    chains.push_back(walk(start, *x.work.adjacent[size_t(start)].begin()));
   }
   return chains;
 }
