@@ -324,18 +324,26 @@ std::vector<Chain> trace_chains(const Extraction& x) {
 //! the slice perpendicular to the chain does not. Twice, since the chain's
 //! tangent improves with its nodes.
 //! Moves every inner node of a chain whose piece is an arc (the bands
-//! around the root, where they start as a patch on one side of the tube)
-//! and lies more than half a radius off the straight line between the
-//! nearest inner ring nodes on either side onto that line: an arc's circle
-//! can lie off the tube altogether (a frame's edge: 1.9 radii out).
-void bridge_arcs(Extraction& x, const std::vector<int>& nodes) {
+//! around the root, where they start as a patch on one side of the tube;
+//! next to a junction, where a band spans a corner) and lies more than half
+//! a radius off the straight line between the nearest anchors on either
+//! side onto that line: an arc's circle can lie off the tube altogether (a
+//! frame's edge: 1.9 radii out). Anchors are the inner ring nodes and, once
+//! the junctions are placed (`from_junctions`), the junction nodes.
+void bridge_arcs(Extraction& x, const std::vector<int>& nodes, bool from_junctions) {
+  // Anchors: inner rings, and once placed (from_junctions) the junctions.
+  auto is_anchor = [&](size_t k) {
+    if (k == 0 || k + 1 == nodes.size()) return from_junctions && x.work.degree(nodes[k]) >= 3;
+    return x.node(nodes[k]).widest_gap <= kArcGap;
+  };
   auto is_ring = [&](size_t k) { return x.node(nodes[k]).widest_gap <= kArcGap; };
+  const size_t first = from_junctions ? 0 : 1, last = from_junctions ? nodes.size() - 1 : nodes.size() - 2;
   for (size_t k = 1; k + 1 < nodes.size(); ++k) {
     if (is_ring(k)) continue;
     size_t before = k, after = k;
-    while (before > 1 && !is_ring(before)) --before;
-    while (after + 2 < nodes.size() && !is_ring(after)) ++after;
-    if (!is_ring(before) || !is_ring(after) || before == k || after == k) continue;
+    while (before > first && !is_anchor(before)) --before;
+    while (after < last && !is_anchor(after)) ++after;
+    if (!is_anchor(before) || !is_anchor(after) || before == k || after == k) continue;
     double t = double(k - before) / double(after - before);
     Eigen::Vector3d bridged = (1 - t) * x.position[size_t(nodes[before])] + t * x.position[size_t(nodes[after])];
     double r = 0.5 * (x.node(nodes[before]).radius + x.node(nodes[after]).radius);
@@ -349,7 +357,7 @@ void centre_on_cross_sections(Extraction& x, const std::vector<Chain>& chains) {
   std::vector<Eigen::Vector3d> slice;
   std::vector<uint32_t> reached;
   std::vector<char> seen(graph.size(), 0);
-  for (const auto& chain : chains) bridge_arcs(x, chain.nodes);
+  for (const auto& chain : chains) bridge_arcs(x, chain.nodes, false);
   for (int pass = 0; pass < 2; ++pass) {
     for (const auto& chain : chains) {
       const std::vector<int>& nodes = chain.nodes;
@@ -892,6 +900,7 @@ ExtractedSkeleton extract_skeleton(const PointCloud& cloud, const std::string& s
   std::vector<Chain> chains = trace_chains(x);
   centre_on_cross_sections(x, chains);
   place_junctions(x, chains);
+  for (const auto& chain : chains) bridge_arcs(x, chain.nodes, true);
   for (auto& chain : chains) {
     if (chain.closed()) continue;
     if (x.work.degree(chain.nodes.front()) == 1) place_end(x, chain.nodes);
