@@ -34,6 +34,10 @@ constexpr double kSpurRise = 1.5;
 // elephant's arms and trunk leave a head and chest three to six times their
 // width; a blunt end of a slab, a bump, 1.2 to 1.7 times).
 constexpr double kLimbProtrusion = 2.0;
+// A spur of two pieces is less evidence: it must stick out further (the
+// elephant's second foot, 3.5 times its width; a sliver beside a hole in a
+// Y's scan, 2.25 times).
+constexpr double kShortLimbProtrusion = 3.0;
 // A cycle of the level-set graph spanning less geodesic distance than this
 // many tube radii needs more evidence that it is a handle (is_a_handle).
 constexpr double kCycleRadii = 2.0;
@@ -219,11 +223,12 @@ double spur_radius(const Extraction& x, int junction, int spur_first) {
 }
 
 //! Whether a spur (`path` from its tip to its junction) is a limb in its
-//! own right: three pieces or more, mostly rings, whose tip sticks out of
-//! the junction's inscribed ball by kLimbProtrusion times their median
-//! radius. The junction's radius alone prunes thin limbs of a fat body.
+//! own right: two pieces or more, mostly rings, whose tip sticks out of the
+//! junction's inscribed ball by kLimbProtrusion times their median radius
+//! (kShortLimbProtrusion for two pieces). The junction's radius alone
+//! prunes thin limbs of a fat body.
 bool is_a_limb(const Extraction& x, const std::vector<int>& path) {
-  if (path.size() < 4) return false;
+  if (path.size() < 3) return false;
   std::vector<double> radii;
   size_t rings = 0;
   for (size_t k = 1; k + 1 < path.size(); ++k) {  // not the tip's cap, not the junction
@@ -233,7 +238,8 @@ bool is_a_limb(const Extraction& x, const std::vector<int>& path) {
   const Eigen::Vector3d& tip = x.position[size_t(path.front())];
   const Eigen::Vector3d& junction = x.position[size_t(path.back())];
   double protrusion = (tip - junction).norm() - x.inscribed_radius(junction);
-  return 2 * rings >= radii.size() && protrusion >= kLimbProtrusion * median(radii);
+  double needed = path.size() == 3 ? kShortLimbProtrusion : kLimbProtrusion;
+  return 2 * rings >= radii.size() && protrusion >= needed * median(radii);
 }
 
 //! Whether a spur is short for its junction: its tip within kSpurRadii
