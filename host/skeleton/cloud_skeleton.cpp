@@ -424,11 +424,17 @@ bool fit_axis(const Extraction& x, const std::vector<int>& nodes, const Eigen::V
   std::vector<Eigen::Vector3d> points;
   std::vector<double> along;
   double walked = 0;
+  // Not the rings of a cap: within a ring radius of an end's tip the bands
+  // of distance lean and their centres with them (the T's arm, four radii
+  // long: its axis tilted 10 degrees, the junction 0.25 radii off).
+  const bool to_an_end = x.work.degree(nodes.back()) == 1;
+  const Eigen::Vector3d& tip = x.position[size_t(nodes.back())];
   for (size_t k = 1; k + 1 < nodes.size(); ++k) {
     const Eigen::Vector3d& p = x.position[size_t(nodes[k])];
     double distance = (p - from).norm();
     if (distance > far) break;
     if (distance < near || x.node(nodes[k]).widest_gap > kArcGap) continue;
+    if (to_an_end && (p - tip).norm() < x.node(nodes[k]).radius) continue;
     if (!points.empty()) walked += (p - points.back()).norm();
     points.push_back(p);
     along.push_back(walked);
