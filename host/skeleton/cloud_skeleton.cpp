@@ -697,8 +697,21 @@ void place_junctions(Extraction& x, std::vector<Chain>& chains) {
           fit_axis(x, limb.nodes, start, r, 3 * r, axis) || fit_axis(x, limb.nodes, start, 0.5 * r, 5 * r, axis);
       Eigen::Vector3d out = has_axis ? axis.direction : (x.position[size_t(limb.nodes.back())] - centre).normalized();
       size_t inner = 1;
+      // Also, within 2.5 r of the centre, off the limb's own axis by more
+      // than half its radius: a band still spanning this limb and its
+      // neighbour, which have not parted yet (a fan's branches 30 degrees
+      // apart: its hub node was 0.95 radii off).
+      std::vector<double> ring_radii;
+      for (int v : limb.nodes)
+        if (x.node(v).widest_gap <= kArcGap) ring_radii.push_back(x.node(v).radius);
+      const double limb_radius = median(ring_radii);
+      auto off_axis = [&](const Eigen::Vector3d& p) {
+        if (!has_axis || limb_radius <= 0 || (p - centre).norm() > 2.5 * r) return false;
+        Eigen::Vector3d d = p - axis.point;
+        return (d - d.dot(axis.direction) * axis.direction).norm() > 0.5 * limb_radius;
+      };
       auto inside = [&](const Eigen::Vector3d& p) {
-        return (p - centre).dot(out) < 0.75 * r || (p - centre).norm() < 1.5 * r;
+        return (p - centre).dot(out) < 0.75 * r || (p - centre).norm() < 1.5 * r || off_axis(p);
       };
       while (inner + 1 < limb.nodes.size() && inside(x.position[size_t(limb.nodes[inner])])) ++inner;
       // limb.nodes[1 .. inner) are inside; erase them from the chain's matching
