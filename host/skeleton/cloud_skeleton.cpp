@@ -136,7 +136,7 @@ bool is_a_handle(const Extraction& x, const std::vector<int>& branch_a, const st
 }
 
 //! Removes the closing edge of every cycle of the spanning tree
-//! (breadth-first from the root's band, in node order) that is no handle.
+//! (breadth-first, in node order) that is no handle.
 void remove_false_cycles(Extraction& x) {
   size_t n = x.work.adjacent.size();
   std::vector<int> parent(n, -2);
@@ -324,11 +324,6 @@ std::vector<Chain> trace_chains(const Extraction& x) {
   return chains;
 }
 
-//! Moves every inner ring of a chain onto the centre of the tube's cross
-//! section there: a band of geodesic distance crosses a tube at a slant and
-//! warped where a limb branches off or the tube bends, and its centre leans;
-//! the slice perpendicular to the chain does not. Twice, since the chain's
-//! tangent improves with its nodes.
 //! Moves every inner node of a chain whose piece is an arc (the bands
 //! around the root, where they start as a patch on one side of the tube;
 //! next to a junction, where a band spans a corner) and lies more than half
@@ -357,6 +352,11 @@ void bridge_arcs(Extraction& x, const std::vector<int>& nodes, bool from_junctio
   }
 }
 
+//! Moves every inner ring of a chain onto the centre of the tube's cross
+//! section there: a band of geodesic distance crosses a tube at a slant and
+//! warped where a limb branches off or the tube bends, and its centre leans;
+//! the slice perpendicular to the chain does not. Twice, since the chain's
+//! tangent improves with its nodes.
 void centre_on_cross_sections(Extraction& x, const std::vector<Chain>& chains) {
   const double half_slab = 0.75 * x.voxels.voxel_size;
   const VoxelGraph& graph = x.voxels;
@@ -529,10 +529,10 @@ void place_junctions(Extraction& x, std::vector<Chain>& chains) {
     return lines;
   };
   // Where the axes of a narrow fork meet can be several radii from where its
-  // bands split; beyond that, or outside the body, they are not axes.
-  // Where the axes meet outside the body (tangents of limbs that bend away
-  // from the hub, as a theta's arcs leave its poles), the junction is the
-  // deepest point between the band's centre and that meeting point.
+  // bands split; beyond four radii they are not axes. Where they meet
+  // outside the body (tangents of limbs that bend away from the hub, as a
+  // theta's arcs leave its poles), the junction is the deepest point between
+  // the band's centre and that meeting point.
   auto meeting_point = [&](const std::vector<Line>& lines, const Eigen::Vector3d& start, double r) {
     if (lines.size() < 2) return start;
     Eigen::Vector3d meet = nearest_to_lines(lines, start);
