@@ -105,8 +105,8 @@ double grid_spacing_quantile(const std::vector<Eigen::Vector3f>& points, double 
   std::vector<size_t> open(all_queries.size());
   for (size_t q = 0; q < open.size(); ++q) open[q] = q;
   while (!open.empty()) {
-    std::vector<size_t> queries;
-    for (size_t q : open) queries.push_back(all_queries[q]);
+    std::vector<size_t> queries(open.size());
+    for (size_t k = 0; k < open.size(); ++k) queries[k] = all_queries[open[k]];
     std::vector<TwoNearest> nearest = two_nearest_in_cells(points, queries, Grid{lo, radius});
     std::vector<size_t> still_open;
     for (size_t k = 0; k < open.size(); ++k) {
@@ -122,6 +122,7 @@ double grid_spacing_quantile(const std::vector<Eigen::Vector3f>& points, double 
     radius *= 2;
   }
   std::vector<double> gaps;
+  gaps.reserve(second.size());
   for (float d2 : second)
     if (std::isfinite(d2)) gaps.push_back(std::sqrt(double(d2)));
   return quantile_of(std::move(gaps), quantile);
