@@ -9,8 +9,9 @@
 namespace mcquad {
 
 //! Faces whose normal points against the scan's normal at the oriented
-//! point nearest their centroid. Any order of the sample gives the same
-//! faces; spatial order (sort_spatially) builds its index 3x faster.
+//! point nearest their centroid. The sample's order changes nothing but
+//! which of two equally near points is taken; spatial order
+//! (sort_spatially) builds its index 3x faster.
 std::vector<int> faces_against_normals(const QuadMesh& mesh, const OrientedSample& oriented);
 
 //! The share of the mesh's area that the given faces cover.
