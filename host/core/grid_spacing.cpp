@@ -6,27 +6,11 @@
 #include <limits>
 #include <unordered_map>
 
+#include "core/grid_cells.h"
 #include "core/point_index.h"
 
 namespace mcquad {
 namespace {
-
-constexpr int kAxisBits = 21;
-constexpr int64_t kAxisCells = int64_t(1) << kAxisBits;
-
-struct Grid {
-  Eigen::Vector3d origin;
-  double cell;
-  std::array<int64_t, 3> coordinates(const Eigen::Vector3f& p) const {
-    Eigen::Vector3d c = ((p.cast<double>() - origin) / cell).array().floor();
-    return {std::clamp<int64_t>(int64_t(c.x()), 0, kAxisCells - 1),
-            std::clamp<int64_t>(int64_t(c.y()), 0, kAxisCells - 1),
-            std::clamp<int64_t>(int64_t(c.z()), 0, kAxisCells - 1)};
-  }
-  static uint64_t key(int64_t x, int64_t y, int64_t z) {
-    return (uint64_t(x) << (2 * kAxisBits)) | (uint64_t(y) << kAxisBits) | uint64_t(z);
-  }
-};
 
 //! The two smallest squared distances seen so far.
 struct TwoNearest {
@@ -58,16 +42,15 @@ float squared_distance(const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
 
 //! One pass: for every query, the two nearest points within its 27 cells.
 std::vector<TwoNearest> two_nearest_in_cells(const std::vector<Eigen::Vector3f>& points,
-                                             const std::vector<size_t>& queries, const Grid& grid) {
+                                             const std::vector<size_t>& queries, const GridCells& grid) {
   std::unordered_map<uint64_t, std::vector<uint32_t>> queries_near;  // cell -> queries whose 27 cells hold it
   for (size_t q = 0; q < queries.size(); ++q) {
-    auto [x, y, z] = grid.coordinates(points[queries[q]]);
+    const GridCells::Cell cell = grid.cell_of(points[queries[q]]);
     for (int64_t dx = -1; dx <= 1; ++dx)
       for (int64_t dy = -1; dy <= 1; ++dy)
         for (int64_t dz = -1; dz <= 1; ++dz) {
-          int64_t nx = x + dx, ny = y + dy, nz = z + dz;
-          if (nx < 0 || ny < 0 || nz < 0 || nx >= kAxisCells || ny >= kAxisCells || nz >= kAxisCells) continue;
-          queries_near[Grid::key(nx, ny, nz)].push_back(uint32_t(q));
+          const GridCells::Cell next{cell[0] + dx, cell[1] + dy, cell[2] + dz};
+          if (GridCells::exists(next)) queries_near[GridCells::key(next)].push_back(uint32_t(q));
         }
   }
   std::vector<TwoNearest> nearest(queries.size());
@@ -76,8 +59,7 @@ std::vector<TwoNearest> two_nearest_in_cells(const std::vector<Eigen::Vector3f>&
     std::vector<TwoNearest> mine(queries.size());
 #pragma omp for schedule(static) nowait
     for (size_t i = 0; i < points.size(); ++i) {
-      auto [x, y, z] = grid.coordinates(points[i]);
-      auto found = queries_near.find(Grid::key(x, y, z));
+      auto found = queries_near.find(grid.key_of(points[i]));
       if (found == queries_near.end()) continue;
       for (uint32_t q : found->second) mine[q].offer(squared_distance(points[queries[q]], points[i]));
     }
@@ -91,23 +73,19 @@ std::vector<TwoNearest> two_nearest_in_cells(const std::vector<Eigen::Vector3f>&
 
 double grid_spacing_quantile(const std::vector<Eigen::Vector3f>& points, double quantile) {
   if (points.size() < 2) return 0.0;
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::max()), hi = -lo;
-  for (const auto& p : points) {
-    lo = lo.cwiseMin(p.cast<double>());
-    hi = hi.cwiseMax(p.cast<double>());
-  }
+  const auto [lo, hi] = box_of(points);
   std::vector<size_t> all_queries = neighbour_spacing_sample(points.size());
   std::vector<float> second(all_queries.size(), std::numeric_limits<float>::infinity());
   // A start near the typical spacing of a surface sample: the box's
   // diagonal over the square root of the count.
   double extent = std::max((hi - lo).norm(), 1e-30);
-  double radius = std::max(2.0 * extent / std::sqrt(double(points.size())), extent / double(kAxisCells - 2));
+  double radius = std::max(2.0 * extent / std::sqrt(double(points.size())), extent / double(GridCells::kAxisCells - 2));
   std::vector<size_t> open(all_queries.size());
   for (size_t q = 0; q < open.size(); ++q) open[q] = q;
   while (!open.empty()) {
     std::vector<size_t> queries(open.size());
     for (size_t k = 0; k < open.size(); ++k) queries[k] = all_queries[open[k]];
-    std::vector<TwoNearest> nearest = two_nearest_in_cells(points, queries, Grid{lo, radius});
+    std::vector<TwoNearest> nearest = two_nearest_in_cells(points, queries, GridCells{lo, radius});
     std::vector<size_t> still_open;
     for (size_t k = 0; k < open.size(); ++k) {
       // Exact once the second nearest lies within the radius (the 27 cells

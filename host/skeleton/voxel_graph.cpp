@@ -7,46 +7,16 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "core/grid_cells.h"
 #include "core/grid_spacing.h"
 
 namespace mcquad {
 namespace {
 
-// 21 bits per axis: a million voxels along the box's longest side.
-constexpr int kAxisBits = 21;
-constexpr int64_t kAxisCells = int64_t(1) << kAxisBits;
-
-struct VoxelKeys {
-  Eigen::Vector3d origin;
-  double size;
-  uint64_t key(const Eigen::Vector3f& p) const {
-    Eigen::Vector3d cell = ((p.cast<double>() - origin) / size).array().floor();
-    uint64_t x = uint64_t(std::clamp<int64_t>(int64_t(cell.x()), 0, kAxisCells - 1));
-    uint64_t y = uint64_t(std::clamp<int64_t>(int64_t(cell.y()), 0, kAxisCells - 1));
-    uint64_t z = uint64_t(std::clamp<int64_t>(int64_t(cell.z()), 0, kAxisCells - 1));
-    return (x << (2 * kAxisBits)) | (y << kAxisBits) | z;
-  }
-};
-
-std::pair<Eigen::Vector3d, Eigen::Vector3d> box_of(const std::vector<Eigen::Vector3f>& points) {
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
-  Eigen::Vector3d hi = -lo;
-  for (const auto& p : points) {
-    lo = lo.cwiseMin(p.cast<double>());
-    hi = hi.cwiseMax(p.cast<double>());
-  }
-  return {lo, hi};
-}
-
-// The smallest edge the 21-bit keys allow on this box.
-double smallest_voxel_size(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
-  return std::max((hi - lo).maxCoeff() / double(kAxisCells - 2), 1e-300);
-}
-
-size_t occupied_voxels(const std::vector<Eigen::Vector3f>& points, size_t stride, const VoxelKeys& keys) {
+size_t occupied_voxels(const std::vector<Eigen::Vector3f>& points, size_t stride, const GridCells& keys) {
   std::unordered_set<uint64_t> occupied;
   occupied.reserve(points.size() / stride / 2 + 16);
-  for (size_t i = 0; i < points.size(); i += stride) occupied.insert(keys.key(points[i]));
+  for (size_t i = 0; i < points.size(); i += stride) occupied.insert(keys.key_of(points[i]));
   return occupied.size();
 }
 
@@ -54,12 +24,12 @@ size_t occupied_voxels(const std::vector<Eigen::Vector3f>& points, size_t stride
 
 double voxel_size_for(const std::vector<Eigen::Vector3f>& points, size_t target_voxels) {
   auto [lo, hi] = box_of(points);
-  double smallest = smallest_voxel_size(lo, hi);
+  double smallest = GridCells::smallest_size(lo, hi);
   size_t stride = std::max<size_t>(1, points.size() / 200000);
   double size = std::max((hi - lo).norm() / 100.0, smallest);
   // Newton-like steps on count ~ size^-2; a few reach 10 %.
   for (int step = 0; step < 8; ++step) {
-    size_t count = occupied_voxels(points, stride, VoxelKeys{lo, size});
+    size_t count = occupied_voxels(points, stride, GridCells{lo, size});
     double ratio = double(count) / double(std::max<size_t>(1, target_voxels));
     if (std::abs(ratio - 1.0) < 0.1) break;
     size = std::max(size * std::sqrt(std::clamp(ratio, 0.05, 20.0)), smallest);
@@ -72,13 +42,13 @@ double sparse_spacing(const std::vector<Eigen::Vector3f>& points) { return grid_
 VoxelGraph build_voxel_graph(const std::vector<Eigen::Vector3f>& points, double voxel_size) {
   VoxelGraph graph;
   auto [lo, hi] = box_of(points);
-  graph.voxel_size = std::max(voxel_size, smallest_voxel_size(lo, hi));
-  VoxelKeys keys{lo, graph.voxel_size};
+  graph.voxel_size = std::max(voxel_size, GridCells::smallest_size(lo, hi));
+  GridCells keys{lo, graph.voxel_size};
   std::unordered_map<uint64_t, uint32_t> index;
   std::vector<uint64_t> voxel_keys;
   std::vector<uint32_t> counts;
   for (const auto& p : points) {
-    uint64_t key = keys.key(p);
+    uint64_t key = keys.key_of(p);
     auto [it, inserted] = index.try_emplace(key, uint32_t(voxel_keys.size()));
     if (inserted) {
       voxel_keys.push_back(key);
@@ -94,15 +64,14 @@ VoxelGraph build_voxel_graph(const std::vector<Eigen::Vector3f>& points, double 
   std::vector<std::vector<std::pair<uint32_t, float>>> adjacent(graph.size());
   const double reach = 2.0 * graph.voxel_size;
   for (uint32_t v = 0; v < graph.size(); ++v) {
-    int64_t x = int64_t(voxel_keys[v] >> (2 * kAxisBits)), y = int64_t((voxel_keys[v] >> kAxisBits) & (kAxisCells - 1)),
-            z = int64_t(voxel_keys[v] & (kAxisCells - 1));
+    const GridCells::Cell cell = GridCells::cell_of_key(voxel_keys[v]);
     for (int dx = -1; dx <= 1; ++dx)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dz = -1; dz <= 1; ++dz) {
           if (dx * 9 + dy * 3 + dz <= 0) continue;  // the forward half
-          int64_t nx = x + dx, ny = y + dy, nz = z + dz;
-          if (nx < 0 || ny < 0 || nz < 0 || nx >= kAxisCells || ny >= kAxisCells || nz >= kAxisCells) continue;
-          auto found = index.find((uint64_t(nx) << (2 * kAxisBits)) | (uint64_t(ny) << kAxisBits) | uint64_t(nz));
+          const GridCells::Cell next{cell[0] + dx, cell[1] + dy, cell[2] + dz};
+          if (!GridCells::exists(next)) continue;
+          auto found = index.find(GridCells::key(next));
           if (found == index.end()) continue;
           double length = (graph.centroids[v] - graph.centroids[found->second]).norm();
           if (length > reach) continue;
