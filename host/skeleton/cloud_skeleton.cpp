@@ -44,6 +44,13 @@ constexpr double kCycleRadii = 2.0;
 // Pieces whose widest angular gap exceeds this are arcs, not rings.
 constexpr double kArcGap = M_PI / 2;
 
+//! Whether a piece of a band (a LevelSetNode, or a RingFit of a slice) goes
+//! round its centre: a ring, not an arc.
+template <typename Piece>
+bool is_ring(const Piece& piece) {
+  return piece.widest_gap <= kArcGap;
+}
+
 //! The level-set graph as an editable graph: nodes die, edges go.
 struct WorkGraph {
   std::vector<std::set<int>> adjacent;
@@ -123,7 +130,7 @@ bool is_a_handle(const Extraction& x, const std::vector<int>& branch_a, const st
     std::array<size_t, 2> rings_pieces{0, 0};
     for (int v : branch)
       if (v != merge) {
-        rings_pieces[0] += x.node(v).widest_gap <= kArcGap;
+        rings_pieces[0] += is_ring(x.node(v));
         ++rings_pieces[1];
       }
     return rings_pieces;
@@ -233,7 +240,7 @@ bool is_a_limb(const Extraction& x, const std::vector<int>& path) {
   size_t rings = 0;
   for (size_t k = 1; k + 1 < path.size(); ++k) {  // not the tip's cap, not the junction
     radii.push_back(x.node(path[k]).radius);
-    rings += x.node(path[k]).widest_gap <= kArcGap;
+    rings += is_ring(x.node(path[k]));
   }
   const Eigen::Vector3d& tip = x.position[size_t(path.front())];
   const Eigen::Vector3d& junction = x.position[size_t(path.back())];
@@ -252,7 +259,7 @@ bool is_a_bump(const Extraction& x, const std::vector<int>& path) {
   double rise = std::abs(x.node(tip).band - x.node(junction).band) * x.band_width;
   double radius = spur_radius(x, junction, path[path.size() - 2]);
   bool short_spur = reach < kSpurRadii * radius || (rise < kSpurRise * radius && reach < 2.5 * radius);
-  bool sliver = path.size() == 2 && x.node(tip).widest_gap > kArcGap;
+  bool sliver = path.size() == 2 && !is_ring(x.node(tip));
   return short_spur || sliver;
 }
 
@@ -335,12 +342,11 @@ void bridge_arcs(Extraction& x, const std::vector<int>& nodes, bool from_junctio
   // Anchors: inner rings, and once placed (from_junctions) the junctions.
   auto is_anchor = [&](size_t k) {
     if (k == 0 || k + 1 == nodes.size()) return from_junctions && x.work.degree(nodes[k]) >= 3;
-    return x.node(nodes[k]).widest_gap <= kArcGap;
+    return is_ring(x.node(nodes[k]));
   };
-  auto is_ring = [&](size_t k) { return x.node(nodes[k]).widest_gap <= kArcGap; };
   const size_t first = from_junctions ? 0 : 1, last = from_junctions ? nodes.size() - 1 : nodes.size() - 2;
   for (size_t k = 1; k + 1 < nodes.size(); ++k) {
-    if (is_ring(k)) continue;
+    if (is_ring(x.node(nodes[k]))) continue;
     size_t before = k, after = k;
     while (before > first && !is_anchor(before)) --before;
     while (after < last && !is_anchor(after)) ++after;
@@ -401,7 +407,7 @@ void centre_on_cross_sections(Extraction& x, const std::vector<Chain>& chains) {
         RingFit ring = fit_ring(slice);
         Eigen::Vector3d shift = ring.centre - p;
         shift -= shift.dot(tangent) * tangent;  // stay in the slice
-        if (ring.widest_gap <= kArcGap && shift.norm() < 0.5 * r) moved[k] = p + shift;
+        if (is_ring(ring) && shift.norm() < 0.5 * r) moved[k] = p + shift;
       }
       for (size_t k = 1; k + 1 < nodes.size(); ++k) x.position[size_t(nodes[k])] = moved[k];
     }
@@ -433,7 +439,7 @@ bool fit_axis(const Extraction& x, const std::vector<int>& nodes, const Eigen::V
     const Eigen::Vector3d& p = x.position[size_t(nodes[k])];
     double distance = (p - from).norm();
     if (distance > far) break;
-    if (distance < near || x.node(nodes[k]).widest_gap > kArcGap) continue;
+    if (distance < near || !is_ring(x.node(nodes[k]))) continue;
     if (to_an_end && (p - tip).norm() < x.node(nodes[k]).radius) continue;
     if (!points.empty()) walked += (p - points.back()).norm();
     points.push_back(p);
@@ -703,7 +709,7 @@ void place_junctions(Extraction& x, std::vector<Chain>& chains) {
       // apart: its hub node was 0.95 radii off).
       std::vector<double> ring_radii;
       for (int v : limb.nodes)
-        if (x.node(v).widest_gap <= kArcGap) ring_radii.push_back(x.node(v).radius);
+        if (is_ring(x.node(v))) ring_radii.push_back(x.node(v).radius);
       const double limb_radius = median(ring_radii);
       auto off_axis = [&](const Eigen::Vector3d& p) {
         if (!has_axis || limb_radius <= 0 || (p - centre).norm() > 2.5 * r) return false;
@@ -740,7 +746,7 @@ void place_end(Extraction& x, std::vector<int>& nodes) {  // nodes start at the 
   const Eigen::Vector3d tip_ring = x.position[size_t(nodes.front())];
   for (size_t k = 1; k + 1 < nodes.size(); ++k) {
     if ((x.position[size_t(nodes[k])] - tip_ring).norm() > 6 * x.node(nodes[k]).radius) break;
-    if (x.node(nodes[k]).widest_gap <= kArcGap) radii.push_back(x.node(nodes[k]).radius);
+    if (is_ring(x.node(nodes[k]))) radii.push_back(x.node(nodes[k]).radius);
   }
   double r = median(radii);
   Line axis;
