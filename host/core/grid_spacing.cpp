@@ -8,6 +8,7 @@
 
 #include "core/grid_cells.h"
 #include "core/point_index.h"
+#include "core/quantile.h"
 
 namespace mcquad {
 namespace {

@@ -9,6 +9,8 @@
 #include <nanoflann.hpp>
 #include <vector>
 
+#include "core/quantile.h"
+
 namespace mcquad {
 
 //! The subsample the spacing quantiles are taken over: every point at a
@@ -18,14 +20,6 @@ inline std::vector<size_t> neighbour_spacing_sample(size_t point_count) {
   size_t stride = std::max<size_t>(1, point_count / 2000);
   for (size_t i = 0; i < point_count; i += stride) sample.push_back(i);
   return sample;
-}
-
-//! The quantile (0.5: the median) of `values`; 0 when there are none.
-inline double quantile_of(std::vector<double> values, double quantile) {
-  if (values.empty()) return 0.0;
-  auto at = values.begin() + long(std::min(values.size() - 1, size_t(quantile * double(values.size()))));
-  std::nth_element(values.begin(), at, values.end());
-  return *at;
 }
 
 //! A quantile (0.5: the median) of the distance from a point to its nearest

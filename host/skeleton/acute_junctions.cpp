@@ -4,6 +4,8 @@
 #include <cmath>
 #include <set>
 
+#include "core/quantile.h"
+
 namespace mcquad {
 namespace {
 
@@ -41,9 +43,7 @@ double limb_radius(const EditableSkeleton& skeleton, const std::vector<int>& cha
   std::vector<double> radii;
   for (size_t k = 0; k + 1 < chain.size(); ++k)
     radii.push_back(skeleton.radius[size_t(skeleton.edge_between(chain[k], chain[k + 1]))]);
-  const double first = radii.front();
-  std::nth_element(radii.begin(), radii.begin() + long(radii.size() / 2), radii.end());
-  const double median = radii[radii.size() / 2];
+  const double first = radii.front(), median = quantile_of(std::move(radii), 0.5);
   return first > kFatFirstBone * median ? median : first;
 }
 

@@ -10,6 +10,7 @@
 
 #include "core/errors.h"
 #include "core/point_index.h"
+#include "core/quantile.h"
 #include "core/union_find.h"
 #include "skeleton/level_set_graph.h"
 #include "skeleton/voxel_graph.h"
@@ -101,11 +102,7 @@ double chain_length(const Extraction& x, const std::vector<int>& nodes) {
   return length;
 }
 
-double median(std::vector<double> values) {
-  if (values.empty()) return 0;
-  std::nth_element(values.begin(), values.begin() + long(values.size() / 2), values.end());
-  return values[values.size() / 2];
-}
+double median(std::vector<double> values) { return quantile_of(std::move(values), 0.5); }
 
 //! Whether a cycle of the level-set graph is a handle, judged by its pieces
 //! between the split and the merge. A handle's two branches are tubes of
