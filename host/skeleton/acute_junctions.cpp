@@ -156,6 +156,30 @@ EditableSkeleton& merge_chains(EditableSkeleton& skeleton, const SkeletonGraph& 
   return skeleton;
 }
 
+//! How far (in the forking pair's radius) a moved fork must stay outside the
+//! tubes of the junction's other bones. Measured on the issue-20 stars
+//! (docs/HARD_CASES.md): 0 still moved two forks of the 12-arm star into its
+//! crowded middle; 0.5 kept the 5-arm planar star's narrowest fork, which
+//! fits better moved.
+constexpr double kForkClearance = 0.25;
+
+//! Whether `point` lies within `clearance` of the tube of a bone of
+//! `junction` other than `pair`: the junction's bones crowd round it (a star
+//! of many arms), and a fork moved to `point` would sit in the middle of
+//! another limb, its block tangled with that limb's tube.
+bool lands_in_another_tube(const EditableSkeleton& skeleton, const SkeletonGraph& graph, int junction,
+                           const std::array<int, 2>& pair, const Eigen::Vector3d& point, double clearance) {
+  const Eigen::Vector3d& a = graph.positions[junction];
+  for (int next : graph.neighbours[junction]) {
+    if (next == pair[0] || next == pair[1]) continue;
+    const std::vector<int> chain = chain_from(graph, junction, next);
+    const Eigen::Vector3d& b = graph.positions[next];
+    const double t = std::clamp((point - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+    if ((point - (a + t * (b - a))).norm() < limb_radius(skeleton, chain) + clearance) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 std::vector<double> node_radii(const SkeletonGraph& graph, const std::vector<double>& bone_radius) {
@@ -227,7 +251,12 @@ TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssign
     }
     Eigen::Vector3d di = (g.positions[best_i] - g.positions[best_node]).normalized();
     Eigen::Vector3d dj = (g.positions[best_j] - g.positions[best_node]).normalized();
-    skeleton.nodes.emplace_back(g.positions[best_node] + (di + dj).normalized() * std::max(crotch - r, 0.25 * crotch));
+    const Eigen::Vector3d fork = g.positions[best_node] + (di + dj).normalized() * std::max(crotch - r, 0.25 * crotch);
+    if (lands_in_another_tube(skeleton, g, best_node, {best_i, best_j}, fork, kForkClearance * r)) {
+      kept.insert({long(best_node) * 100000 + best_i, best_j});
+      continue;
+    }
+    skeleton.nodes.push_back(fork);
     int junction = int(skeleton.nodes.size()) - 1;
     created.push_back(skeleton.nodes.back());
     int pi = cut_chain(skeleton, g, chain_i, along);
