@@ -116,6 +116,11 @@ struct FitCommand {
                     "junctions whose bones fork more acutely move to where the cloud's tubes part (0 = never)")
         ->check(range("min_junction_angle"))
         ->capture_default_str();
+    app->add_option("--junction-inflation", init.junction_inflation,
+                    "robust mode: move the mesh round each junction this fraction of the way to the cloud along rays "
+                    "from its node (0 = off)")
+        ->check(range("junction_inflation"))
+        ->capture_default_str();
     app->add_option("--write-skeleton", options.construction_skeleton, "write the skeleton the mesh is built on (OBJ)");
     if (!evolution) {
       add_word_option(app, "--stage", init.stage, construction_stage_words(),

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <cmath>
 
 #include "core/point_cloud.h"
 #include "core/point_index.h"
@@ -29,6 +30,11 @@ class CloudProbe {
   //! from a centre near a thin tube's wall still finds the wall across).
   //! Tracing stops once past `enough`: callers only need to know that much.
   double distance_along(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double enough) const;
+
+  //! Distance from `p` to the nearest cloud point.
+  double distance_to_cloud(const Eigen::Vector3d& p) const {
+    return std::sqrt(double(index_.nearest(p.cast<float>()).second));
+  }
 
   //! Catmull-Clark cuts corners: in a crease of the cloud (where tubes meet)
   //! a smoothed vertex can end up outside. Such vertices -- the cloud lies

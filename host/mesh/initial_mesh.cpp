@@ -15,6 +15,7 @@
 #include "mesh/folds.h"
 #include "mesh/frames.h"
 #include "mesh/junction_block.h"
+#include "mesh/junction_inflation.h"
 #include "mesh/mesh_arrays.h"
 #include "mesh/open_ends.h"
 #include "mesh/polyline.h"
@@ -437,7 +438,7 @@ CoarseMesh assemble_coarse_mesh(const TubeSkeleton& skeleton, const PointCloud& 
                                 const PointIndex<float>& cloud_index, const InitialMeshOptions& options,
                                 const std::string& source, BlockPreference preference);
 //! The coarse mesh refined `levels` times, folds relaxed, moved back inside the cloud.
-QuadMesh refined(const CoarseMesh& coarse, int levels);
+QuadMesh refined(const CoarseMesh& coarse, int levels, double junction_inflation);
 
 }  // namespace
 
@@ -464,10 +465,11 @@ InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment&
   // makes the same choice.
   CoarseMesh coarse = assemble_coarse_mesh(skeleton, cloud, *cloud_index, options, source, BlockPreference::kFitted);
   if (coarse.preference_mattered && options.stage == ConstructionStage::kRefined) {
-    size_t crossings = intersecting_face_pairs(refined(coarse, 1)).size();
+    size_t crossings = intersecting_face_pairs(refined(coarse, 1, options.junction_inflation)).size();
     if (crossings > 0) {
       CoarseMesh cubes = assemble_coarse_mesh(skeleton, cloud, *cloud_index, options, source, BlockPreference::kCube);
-      if (intersecting_face_pairs(refined(cubes, 1)).size() < crossings) coarse = std::move(cubes);
+      if (intersecting_face_pairs(refined(cubes, 1, options.junction_inflation)).size() < crossings)
+        coarse = std::move(cubes);
     }
   }
   InitialMesh& result = coarse.result;
@@ -475,7 +477,7 @@ InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment&
     int levels = refinement_levels(result.mesh, options);
     result.refinement_levels = options.coarse_first ? std::min(levels, 1) : levels;
     result.finer_levels = levels - result.refinement_levels;
-    result.mesh = refined(coarse, result.refinement_levels);
+    result.mesh = refined(coarse, result.refinement_levels, options.junction_inflation);
     result.irregular_allowed.resize(result.mesh.n_vertices(), false);
   }
   return std::move(result);
@@ -492,8 +494,13 @@ void untangle(QuadMesh& mesh) {
   }
 }
 
-QuadMesh refined(const CoarseMesh& coarse, int levels) {
+QuadMesh refined(const CoarseMesh& coarse, int levels, double junction_inflation) {
   QuadMesh mesh = coarse.result.mesh;
+  // Junctions are inflated at the default resolution (or the coarse mesh
+  // when that is all there is): finer levels smooth the moved mesh as they
+  // refine it; inflated after them, 0.8 % of a T's area turned in its
+  // creases.
+  const int inflate_after = std::min(levels, 1);
   // Level by level: a crossing is smoothed away at the coarsest level it
   // appears, where a few rounds move whole faces, not slivers of them.
   // The last level's crossings are looked for once, after the move inside.
@@ -503,6 +510,8 @@ QuadMesh refined(const CoarseMesh& coarse, int levels) {
       untangle(mesh);
     else
       relax_folds(mesh);
+    if (level + 1 == inflate_after && junction_inflation > 0)
+      inflate_junctions(mesh, coarse.result.skeleton, coarse.assembler->probe(), junction_inflation);
   }
   coarse.assembler->probe().keep_inside(mesh);
   // Moving back inside can fold a face in a tight crease. The unrefined

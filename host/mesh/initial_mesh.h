@@ -27,6 +27,9 @@ struct InitialMeshOptions {
   //! Junctions whose bones fork more acutely move to where the cloud's tubes
   //! part (skeleton/acute_junctions.h); 0 keeps every junction where it is.
   double min_junction_angle = 75.0 * M_PI / 180.0;
+  //! The mesh round each junction moves this fraction of the way to the cloud
+  //! along rays from the junction's node (mesh/junction_inflation.h); 0 = off.
+  double junction_inflation = 0.85;
   //! Refine only once (the default resolution) even where more levels are
   //! asked for; InitialMesh::finer_levels says how many are left, for the
   //! fit to add after evolving this mesh (coarse to fine, docs/DESIGN.md).

@@ -89,9 +89,7 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
   // Coarse to fine in robust mode: finer meshes start from the default
   // resolution's fit, refined, instead of from the rough mesh 0.3 r inside
   // the cloud, which their steps reach slowly (docs/DESIGN.md).
-  InitialMeshOptions initial_options = options.initial;
-  initial_options.coarse_first = options.evolve && options.evolution.mode == EvolutionParameters::Mode::kRobust &&
-                                 options.evolution.coarse_to_fine;
+  const InitialMeshOptions initial_options = effective_initial_options(options);
   EvolutionSetup setup =
       prepare_evolution(graph, cloud, initial_options, options.leaf_size, skeleton_path, scope, &timer);
   if (!options.construction_skeleton.empty())

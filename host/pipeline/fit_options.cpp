@@ -16,6 +16,7 @@ constexpr OptionRange kOptionRanges[] = {
     {"start_fraction", 0.05, 0.95},
     {"resolution", 0, HUGE_VAL},
     {"min_junction_angle", 0, 120},
+    {"junction_inflation", 0, 0.95},
     {"relaxation", 0, 1},
     {"held_back_relaxation", 0, 1},
     {"hit_band", 0, 1},
@@ -39,12 +40,21 @@ void check_range(const char* option, double value) {
 
 }  // namespace
 
+InitialMeshOptions effective_initial_options(const FitOptions& options) {
+  InitialMeshOptions initial = options.initial;
+  const bool robust = options.evolution.mode == EvolutionParameters::Mode::kRobust;
+  initial.coarse_first = options.evolve && robust && options.evolution.coarse_to_fine;
+  if (!robust) initial.junction_inflation = 0;
+  return initial;
+}
+
 void check_fit_options(const FitOptions& options) {
   const auto& e = options.evolution;
   const auto& i = options.initial;
   check_range("start_fraction", i.start_fraction);
   check_range("resolution", i.resolution);
   check_range("min_junction_angle", i.min_junction_angle * kDegrees);
+  check_range("junction_inflation", i.junction_inflation);
   check_range("relaxation", e.relaxation);
   check_range("held_back_relaxation", e.held_back_relaxation);
   check_range("hit_band", e.hit_band);

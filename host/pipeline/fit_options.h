@@ -25,6 +25,11 @@ struct FitOptions {
   SurfaceOutputs surfaces;            //!< B-spline surfaces to write (none by default)
 };
 
+//! The initial mesh's options as the fit builds it: robust mode's parts of
+//! the construction (coarse to fine when evolving, the junctions' inflation)
+//! are off in the paper's mode, whatever `options.initial` says.
+InitialMeshOptions effective_initial_options(const FitOptions& options);
+
 //! Options out of range or contradicting each other, refused before any
 //! work (InputError naming the option). The CLI checks the same ranges while
 //! parsing; this holds them for every other caller (the Python package).

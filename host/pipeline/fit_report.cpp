@@ -34,6 +34,7 @@ nlohmann::json to_json(const FitReport::Parameters& p) {
           {"target_vertices", o.initial.target_vertices},
           {"ends", word_of(o.initial.ends, end_mode_words())},
           {"min_junction_angle_degrees", o.initial.min_junction_angle * 180.0 / M_PI},
+          {"junction_inflation", effective_initial_options(o).junction_inflation},
           {"median_radius", p.median_radius}};
 }
 

@@ -172,6 +172,7 @@ InitialMeshOptions initial_options_from(const nlohmann::json& p) {
   o.resolution = p.value("resolution", o.resolution);
   o.target_vertices = p.value("target_vertices", o.target_vertices);
   o.ends = end_mode_from_name(p.value("ends", std::string("auto")), "ends");
+  o.junction_inflation = p.value("junction_inflation", o.junction_inflation);
   if (p.contains("min_junction_angle_degrees"))
     o.min_junction_angle = p["min_junction_angle_degrees"].get<double>() * M_PI / 180.0;
   return o;

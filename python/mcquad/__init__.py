@@ -187,6 +187,7 @@ def fit(
     resolution: float = 0.0,
     target_vertices: int = 0,
     min_junction_angle: float = 75.0,
+    junction_inflation: float = 0.85,
     write_skeleton: str = "",
     backend: str = "auto",
     device: str = "",
@@ -232,6 +233,8 @@ def fit(
         target_vertices: refine until at least this many vertices (0: off).
         min_junction_angle: degrees (0 to 120); junctions whose bones fork more
             acutely move to where the cloud's tubes part (0: never).
+        junction_inflation: robust mode: the mesh round each junction moves this fraction of the way to the
+            cloud along rays from its node before the evolution (0 to 0.95; 0: off).
         write_skeleton: write the skeleton the mesh is built on here (OBJ).
         backend: ``auto`` (OpenCL if a device exists), ``serial`` or ``opencl``.
         device: OpenCL device index or name (default: ``$MCQUAD_DEVICE``, else the first GPU, else the first device).

@@ -68,6 +68,7 @@ const FieldTable<FitOptions>& fit_fields() {
       {"resolution", nested(&O::initial, &I::resolution)},
       {"target_vertices", nested(&O::initial, &I::target_vertices)},
       {"min_junction_angle", degrees(&O::initial, &I::min_junction_angle)},
+      {"junction_inflation", nested(&O::initial, &I::junction_inflation)},
       {"write_skeleton", plain(&O::construction_skeleton)},
       {"backend", word<O, BackendKind>([](O& o) -> BackendKind& { return o.backend; }, backend_words, "backend")},
       {"device", plain(&O::device)},

@@ -24,10 +24,9 @@ struct HardCase {
   bool covered;
   //! Whether at most 0.1 % of the mesh's area faces against the true
   //! surface (issue 20's bound). Not yet in the 30-degree Y's crotch
-  //! (0.53 %), where the thin branch leaves its trunk (0.86 %), at the T's
-  //! creases with outliers (0.50 %) or holes (0.31 %), nor under 10 % noise
-  //! (0.17 % here, 0.00 % through `mcquad fit`, whose points are sorted and
-  //! so sampled differently): docs/HARD_CASES.md.
+  //! (0.17 %) nor where the thin branch leaves its trunk (1.09 %):
+  //! docs/HARD_CASES.md. The T's creases with outliers and holes met it
+  //! once the junctions were inflated (0.50 and 0.31 % before).
   bool faces_out = true;
 };
 
@@ -45,17 +44,12 @@ ShapeOptions with(double angle = 60, double noise = 0, double outliers = 0, doub
 }
 
 const HardCase kCases[] = {
-    {"y_fork_30", "y-fork", with(30), true, false},
-    {"y_fork_15", "y-fork", with(15), false},
-    {"tight_knot", "tight-knot", with(), true},
-    {"parallel_tubes", "parallel-tubes", with(), true},
-    {"thin_branch", "thin-branch", with(), true, false},
-    {"noise_2", "t-shape", with(60, 0.02), true},
-    {"noise_5", "t-shape", with(60, 0.05), true},
-    {"noise_10", "t-shape", with(60, 0.10), true, false},
-    {"outliers", "t-shape", with(60, 0, 0.01), true, false},
-    {"density_10", "t-shape", with(60, 0, 0, 10), true},
-    {"holes", "t-shape", with(60, 0, 0, 1, 3), true, false},
+    {"y_fork_30", "y-fork", with(30), true, false},      {"y_fork_15", "y-fork", with(15), false},
+    {"tight_knot", "tight-knot", with(), true},          {"parallel_tubes", "parallel-tubes", with(), true},
+    {"thin_branch", "thin-branch", with(), true, false}, {"noise_2", "t-shape", with(60, 0.02), true},
+    {"noise_5", "t-shape", with(60, 0.05), true},        {"noise_10", "t-shape", with(60, 0.10), true},
+    {"outliers", "t-shape", with(60, 0, 0.01), true},    {"density_10", "t-shape", with(60, 0, 0, 10), true},
+    {"holes", "t-shape", with(60, 0, 0, 1, 3), true},
 };
 
 struct Measured {
