@@ -440,6 +440,50 @@ CoarseMesh assemble_coarse_mesh(const TubeSkeleton& skeleton, const PointCloud& 
 //! The coarse mesh refined `levels` times, folds relaxed, moved back inside the cloud.
 QuadMesh refined(const CoarseMesh& coarse, int levels, double junction_inflation);
 
+//! Whether `point` lies within `radius` plus a bone's radius of any bone
+//! not at `node`: an end moved there would run its tube into that one.
+bool nears_another_bone(const TubeSkeleton& skeleton, int node, const Eigen::Vector3d& point, double radius) {
+  const SkeletonGraph& graph = skeleton.graph;
+  for (size_t b = 0; b < graph.edges.size(); ++b) {
+    const auto& e = graph.edges[b];
+    if (e[0] == node || e[1] == node) continue;
+    const Eigen::Vector3d& a = graph.positions[size_t(e[0])];
+    const Eigen::Vector3d& c = graph.positions[size_t(e[1])];
+    const double t = std::clamp((point - a).dot(c - a) / std::max((c - a).squaredNorm(), 1e-300), 0.0, 1.0);
+    if ((point - (a + t * (c - a))).norm() < radius + skeleton.bone_radius[b]) return true;
+  }
+  return false;
+}
+
+//! End nodes short of where the cloud's tube ends (skeletons of other tools
+//! stop inside the tips; issue 14) move out along their last bone: a capped
+//! end to one radius short of the cloud's tip, where a cap centred there
+//! reaches it, an open end to where the tube's wall stops. An end in place
+//! stays: a cap's tip is a radius beyond it, an open wall stops there.
+void reach_the_cloud_ends(TubeSkeleton& skeleton, const PointCloud& cloud, const PointIndex<float>& index,
+                          EndMode ends) {
+  SkeletonGraph& graph = skeleton.graph;
+  const double spacing = index.median_spacing();
+  for (size_t node = 0; node < graph.node_count(); ++node) {
+    if (graph.kind(int(node)) != NodeKind::kEnd) continue;
+    const Eigen::Vector3d end = graph.positions[node];
+    const Eigen::Vector3d outward = (end - graph.positions[size_t(graph.neighbours[node][0])]).normalized();
+    const double radius = skeleton.node_radius[node];
+    const double extent = cloud_extent_beyond(index, cloud, end, outward, radius, std::max(spacing, 0.1 * radius));
+    if (extent <= 0.25 * radius) continue;  // an open end where the wall stops
+    // Open or capped as decided at the node itself; a move that would make
+    // the end look otherwise (another limb's points beyond a short one) is
+    // not made, so moving never changes what an end is.
+    auto open_at = [&](const Eigen::Vector3d& p) {
+      return ends == EndMode::kOpen || (ends == EndMode::kAuto && cloud_is_open_at(index, cloud, p, outward, radius));
+    };
+    const bool open = open_at(end);
+    const Eigen::Vector3d moved = end + (open ? extent : std::max(extent - radius, 0.0)) * outward;
+    if (open_at(moved) != open || nears_another_bone(skeleton, int(node), moved, radius)) continue;
+    graph.positions[node] = moved;
+  }
+}
+
 }  // namespace
 
 InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment& bones, const PointCloud& cloud,
@@ -456,6 +500,7 @@ InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment&
     }
   }
   TubeSkeleton skeleton = spread_acute_junctions(graph, bones, options.min_junction_angle, source);
+  reach_the_cloud_ends(skeleton, cloud, *cloud_index, options.ends);
   // The cube where the bones fit it, the general block elsewhere; where that
   // leaves faces crossing and the cube could serve more junctions, the mesh
   // with the cube wherever it can is built too, and the one with fewer

@@ -15,4 +15,13 @@ namespace mcquad {
 bool cloud_is_open_at(const PointIndex<float>& index, const PointCloud& cloud, const Eigen::Vector3d& end,
                       const Eigen::Vector3d& outward, double radius);
 
+//! How far beyond `end`, along `outward`, the cloud's tube goes on: the last
+//! distance t (up to 4 radii, in steps of `step`) at which cloud points lie
+//! within `step` of the cross-section at t, within 1.25 radii of the axis,
+//! in three of the four quarters round it (a limb beside the axis fills one
+//! or two); 0 when the cloud stops at the end. One empty step is a sampling
+//! gap, two end the tube.
+double cloud_extent_beyond(const PointIndex<float>& index, const PointCloud& cloud, const Eigen::Vector3d& end,
+                           const Eigen::Vector3d& outward, double radius, double step);
+
 }  // namespace mcquad

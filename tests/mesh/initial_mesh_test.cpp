@@ -241,6 +241,34 @@ TEST(InitialMesh, TooManyArmsFailClearlyNamingTheNode) {
   }
 }
 
+//! Skeletons of other tools stop short of the tips (issue 14): a T whose
+//! three ends stop a radius short gets its end nodes moved back out, the
+//! capped ones a radius short of the cloud's tip (where a cap centred there
+//! reaches it), the open one to where its wall stops: where the generator's
+//! own skeleton has them.
+TEST(InitialMesh, EndNodesShortOfTheTipMoveOut) {
+  ShapeOptions shortened;
+  shortened.short_ends = 1;
+  GeneratedShape shape = test::small_shape("t-shape", 20000, shortened);
+  GeneratedShape full = test::small_shape("t-shape", 20000);
+  SkeletonGraph graph = build_skeleton_graph(shape.skeleton, "t");
+  SkeletonGraph truth = build_skeleton_graph(full.skeleton, "t");
+  BoneAssignment bones = assign_points_to_bones(graph, shape.cloud, "t");
+  InitialMesh initial = build_initial_mesh(graph, bones, shape.cloud, {}, "t");
+  const SkeletonGraph& built = initial.skeleton.graph;
+  int ends = 0;
+  for (size_t v = 0; v < built.node_count(); ++v) {
+    if (built.kind(int(v)) != NodeKind::kEnd) continue;
+    ++ends;
+    double nearest = INFINITY;
+    for (size_t w = 0; w < truth.node_count(); ++w)
+      if (truth.kind(int(w)) == NodeKind::kEnd)
+        nearest = std::min(nearest, (truth.positions[w] - built.positions[v]).norm());
+    EXPECT_LT(nearest, 0.15) << "end " << v << " at " << built.positions[v].transpose();  // radius 1
+  }
+  EXPECT_EQ(ends, 3);
+}
+
 TEST(InitialMesh, EndsCanBeForcedOpenOrCapped) {
   GeneratedShape shape = test::small_shape("t-shape", 20000);
   SkeletonGraph graph = build_skeleton_graph(shape.skeleton, "t");

@@ -30,8 +30,8 @@ void PrintTo(const StandIn& c, std::ostream* os) { *os << c.label; }
 
 const StandIn kStandIns[] = {
     {"blob_limbs", "blob-limbs", 0, 0, false, false, false},
-    {"t_off_centre", "t-shape", 0.5, 0, false, true, false},
-    {"t_short_ends", "t-shape", 0, 1, true, false, true},
+    {"t_off_centre", "t-shape", 0.5, 0, false, true, true},
+    {"t_short_ends", "t-shape", 0, 1, true, true, true},
     {"octopus_off_centre_short", "octopus", 0.5, 1, false, false, false},
 };
 
