@@ -541,10 +541,10 @@ void untangle(QuadMesh& mesh) {
 
 QuadMesh refined(const CoarseMesh& coarse, int levels, double junction_inflation) {
   QuadMesh mesh = coarse.result.mesh;
-  // Junctions are inflated at the default resolution (or the coarse mesh
-  // when that is all there is): finer levels smooth the moved mesh as they
-  // refine it; inflated after them, 0.8 % of a T's area turned in its
-  // creases.
+  // Junctions are inflated at the default resolution (the unrefined mesh,
+  // 8 vertices round a tube, is too coarse to follow the rays: its rings
+  // left their bones): finer levels smooth the moved mesh as they refine
+  // it; inflated after them, 0.8 % of a T's area turned in its creases.
   const int inflate_after = std::min(levels, 1);
   // Level by level: a crossing is smoothed away at the coarsest level it
   // appears, where a few rounds move whole faces, not slivers of them.

@@ -37,8 +37,6 @@ double fade(double s, double inner, double outer) {
   return 0.5 * (1.0 + std::cos(M_PI * (s - inner) / (outer - inner)));
 }
 
-}  // namespace
-
 //! The offsets a few rounds of neighbour averaging smoother: where rays from
 //! the node cross a crotch, neighbouring vertices' rays meet the cloud at
 //! very different distances, and moved as they are, the faces between them
@@ -60,6 +58,8 @@ std::vector<double> smoothed(const QuadMesh& mesh, std::vector<double> offset, c
   }
   return offset;
 }
+
+}  // namespace
 
 void inflate_junctions(QuadMesh& mesh, const TubeSkeleton& skeleton, const CloudProbe& probe, double fraction) {
   MeshArrays arrays = flatten_mesh(mesh);

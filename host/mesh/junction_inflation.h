@@ -15,8 +15,12 @@ namespace mcquad {
 //! creases between the tubes and be held back by the crossing guard, deep
 //! inside (docs/DESIGN.md, "Junctions inflated from their node"). A ray that
 //! runs on through a gap in the cloud (a hole beside the node) is not
-//! followed: a vertex moves at most three times its distance to the cloud.
-//! No vertex moves nearer to the skeleton. The moves go through the crossing guard: none makes faces cross or fold.
+//! followed: a vertex whose ray meets the cloud more than three times its
+//! distance to the cloud away gets no offset of its own (smoothing may still
+//! hand it part of its neighbours'). Offsets are smoothed over neighbours;
+//! a move is halved until the vertex stays two sample spacings inside the
+//! cloud; no vertex moves nearer to the skeleton. The moves go through the
+//! crossing guard: none makes faces cross or fold.
 void inflate_junctions(QuadMesh& mesh, const TubeSkeleton& skeleton, const CloudProbe& probe, double fraction);
 
 }  // namespace mcquad
