@@ -22,6 +22,7 @@
 #include "mesh/quad_soup.h"
 #include "mesh/refinement.h"
 #include "skeleton/acute_junctions.h"
+#include "skeleton/bone_assignment.h"
 
 namespace mcquad {
 namespace {
@@ -447,10 +448,9 @@ bool nears_another_bone(const TubeSkeleton& skeleton, int node, const Eigen::Vec
   for (size_t b = 0; b < graph.edges.size(); ++b) {
     const auto& e = graph.edges[b];
     if (e[0] == node || e[1] == node) continue;
-    const Eigen::Vector3d& a = graph.positions[size_t(e[0])];
-    const Eigen::Vector3d& c = graph.positions[size_t(e[1])];
-    const double t = std::clamp((point - a).dot(c - a) / std::max((c - a).squaredNorm(), 1e-300), 0.0, 1.0);
-    if ((point - (a + t * (c - a))).norm() < radius + skeleton.bone_radius[b]) return true;
+    const double distance =
+        segment_distance(point, graph.positions[size_t(e[0])], graph.positions[size_t(e[1])], nullptr);
+    if (distance < radius + skeleton.bone_radius[b]) return true;
   }
   return false;
 }

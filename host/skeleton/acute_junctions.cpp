@@ -169,12 +169,9 @@ constexpr double kLeastPartialMove = 0.5;
 //! Distance from `point` to the polyline of `chain`'s nodes.
 double distance_to_chain(const SkeletonGraph& graph, const std::vector<int>& chain, const Eigen::Vector3d& point) {
   double nearest = INFINITY;
-  for (size_t k = 0; k + 1 < chain.size(); ++k) {
-    const Eigen::Vector3d& a = graph.positions[chain[k]];
-    const Eigen::Vector3d& b = graph.positions[chain[k + 1]];
-    const double t = std::clamp((point - a).dot(b - a) / std::max((b - a).squaredNorm(), 1e-300), 0.0, 1.0);
-    nearest = std::min(nearest, (point - (a + t * (b - a))).norm());
-  }
+  for (size_t k = 0; k + 1 < chain.size(); ++k)
+    nearest =
+        std::min(nearest, segment_distance(point, graph.positions[chain[k]], graph.positions[chain[k + 1]], nullptr));
   return nearest;
 }
 
@@ -184,13 +181,10 @@ double distance_to_chain(const SkeletonGraph& graph, const std::vector<int>& cha
 //! another limb, its block tangled with that limb's tube.
 bool lands_in_another_tube(const EditableSkeleton& skeleton, const SkeletonGraph& graph, int junction,
                            const std::array<int, 2>& pair, const Eigen::Vector3d& point, double clearance) {
-  const Eigen::Vector3d& a = graph.positions[junction];
   for (int next : graph.neighbours[junction]) {
     if (next == pair[0] || next == pair[1]) continue;
-    const std::vector<int> chain = chain_from(graph, junction, next);
-    const Eigen::Vector3d& b = graph.positions[next];
-    const double t = std::clamp((point - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
-    if ((point - (a + t * (b - a))).norm() < limb_radius(skeleton, chain) + clearance) return true;
+    const double distance = segment_distance(point, graph.positions[junction], graph.positions[next], nullptr);
+    if (distance < limb_radius(skeleton, chain_from(graph, junction, next)) + clearance) return true;
   }
   return false;
 }
