@@ -9,6 +9,8 @@
 
 #include "core/quad_mesh.h"
 #include "generate/shapes.h"
+#include "skeleton/bone_assignment.h"
+#include "skeleton/skeleton_graph.h"
 
 namespace mcquad::test {
 
@@ -76,5 +78,18 @@ inline GeneratedShape small_shape(const std::string& name, size_t points, ShapeO
   options.points = points;
   return generate_shape(name, options);
 }
+
+//! A generated shape with its skeleton's graph and the cloud's bones and
+//! radii: what the skeleton and initial-mesh tests start from (`name` is
+//! also the source their messages name).
+struct ShapeWithBones {
+  GeneratedShape shape;
+  SkeletonGraph graph;
+  BoneAssignment bones;
+  ShapeWithBones(const std::string& name, size_t points, const ShapeOptions& options = {})
+      : shape(small_shape(name, points, options)),
+        graph(build_skeleton_graph(shape.skeleton, name)),
+        bones(assign_points_to_bones(graph, shape.cloud, name)) {}
+};
 
 }  // namespace mcquad::test

@@ -336,7 +336,6 @@ std::vector<Chain> trace_chains(const Extraction& x) {
 //! frame's edge: 1.9 radii out). Anchors are the inner ring nodes and, once
 //! the junctions are placed (`from_junctions`), the junction nodes.
 void bridge_arcs(Extraction& x, const std::vector<int>& nodes, bool from_junctions) {
-  // Anchors: inner rings, and once placed (from_junctions) the junctions.
   auto is_anchor = [&](size_t k) {
     if (k == 0 || k + 1 == nodes.size()) return from_junctions && x.work.degree(nodes[k]) >= 3;
     return is_ring(x.node(nodes[k]));

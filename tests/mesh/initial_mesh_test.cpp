@@ -51,14 +51,8 @@ MeshStatistics expect_initial_topology(const InitialMesh& initial, const Skeleto
 }
 
 //! A generated shape, its skeleton graph and radii: what both property tests start from.
-struct ShapeUnderTest {
-  GeneratedShape shape;
-  SkeletonGraph graph;
-  BoneAssignment bones;
-  explicit ShapeUnderTest(const ShapeCase& c)
-      : shape(test::small_shape(c.name, c.points, c.options)),
-        graph(build_skeleton_graph(shape.skeleton, c.name)),
-        bones(assign_points_to_bones(graph, shape.cloud, c.name)) {}
+struct ShapeUnderTest : test::ShapeWithBones {
+  explicit ShapeUnderTest(const ShapeCase& c) : ShapeWithBones(c.name, c.points, c.options) {}
 };
 
 //! Builds the initial mesh at the two resolutions every property must hold
@@ -249,11 +243,8 @@ TEST(InitialMesh, TooManyArmsFailClearlyNamingTheNode) {
 TEST(InitialMesh, EndNodesShortOfTheTipMoveOut) {
   ShapeOptions shortened;
   shortened.short_ends = 1;
-  GeneratedShape shape = test::small_shape("t-shape", 20000, shortened);
-  GeneratedShape full = test::small_shape("t-shape", 20000);
-  SkeletonGraph graph = build_skeleton_graph(shape.skeleton, "t");
-  SkeletonGraph truth = build_skeleton_graph(full.skeleton, "t");
-  BoneAssignment bones = assign_points_to_bones(graph, shape.cloud, "t");
+  const auto [shape, graph, bones] = test::ShapeWithBones("t-shape", 20000, shortened);
+  SkeletonGraph truth = build_skeleton_graph(test::small_shape("t-shape", 20000).skeleton, "t");
   InitialMesh initial = build_initial_mesh(graph, bones, shape.cloud, {}, "t");
   const SkeletonGraph& built = initial.skeleton.graph;
   int ends = 0;
@@ -270,9 +261,7 @@ TEST(InitialMesh, EndNodesShortOfTheTipMoveOut) {
 }
 
 TEST(InitialMesh, EndsCanBeForcedOpenOrCapped) {
-  GeneratedShape shape = test::small_shape("t-shape", 20000);
-  SkeletonGraph graph = build_skeleton_graph(shape.skeleton, "t");
-  BoneAssignment bones = assign_points_to_bones(graph, shape.cloud, "t");
+  const auto [shape, graph, bones] = test::ShapeWithBones("t-shape", 20000);
   InitialMeshOptions options;
   options.ends = EndMode::kCapped;
   EXPECT_EQ(build_initial_mesh(graph, bones, shape.cloud, options, "t").open_ends, 0);
@@ -283,9 +272,7 @@ TEST(InitialMesh, EndsCanBeForcedOpenOrCapped) {
 }
 
 TEST(InitialMesh, StagesStopEarly) {
-  GeneratedShape shape = test::small_shape("t-shape", 20000);
-  SkeletonGraph graph = build_skeleton_graph(shape.skeleton, "t");
-  BoneAssignment bones = assign_points_to_bones(graph, shape.cloud, "t");
+  const auto [shape, graph, bones] = test::ShapeWithBones("t-shape", 20000);
   InitialMeshOptions options;
   options.stage = ConstructionStage::kBlocks;
   InitialMesh blocks = build_initial_mesh(graph, bones, shape.cloud, options, "t");

@@ -30,9 +30,7 @@ double mean_depth_near(const QuadMesh& mesh, const TubeSurface& surface, const E
 TEST(JunctionInflation, MovesTheMeshRoundAJunctionTowardTheTrueSurface) {
   ShapeOptions star;
   star.arms = 8;
-  GeneratedShape shape = test::small_shape("star", 30000, star);
-  SkeletonGraph graph = build_skeleton_graph(shape.skeleton, "star");
-  BoneAssignment bones = assign_points_to_bones(graph, shape.cloud, "star");
+  const auto [shape, graph, bones] = test::ShapeWithBones("star", 30000, star);
   InitialMeshOptions off;
   off.junction_inflation = 0;
   InitialMesh plain = build_initial_mesh(graph, bones, shape.cloud, off, "star");

@@ -53,9 +53,7 @@ TEST(SkeletonGraph, RejectsSelfLoopsAndIsolatedNodes) {
 TEST(BoneAssignment, RadiiMatchTheGeneratedTubesDespiteNoise) {
   ShapeOptions options;
   options.noise = 0.05;
-  GeneratedShape shape = test::small_shape("y-fork", 30000, options);
-  SkeletonGraph graph = build_skeleton_graph(shape.skeleton, "y");
-  BoneAssignment bones = assign_points_to_bones(graph, shape.cloud, "y");
+  auto [shape, graph, bones] = test::ShapeWithBones("y-fork", 30000, options);
   for (size_t b = 0; b < graph.edges.size(); ++b) {
     Eigen::Vector3d middle = 0.5 * (graph.positions[graph.edges[b][0]] + graph.positions[graph.edges[b][1]]);
     double truth = shape.surface.capsules()[shape.surface.nearest_capsule(middle)].radius;
@@ -72,9 +70,7 @@ TEST(AcuteJunctions, SpreadWhereTheTubesPartMergeWhereTheyNeverDo) {
   for (double angle : {30.0, 15.0}) {
     ShapeOptions options;
     options.angle_degrees = angle;
-    GeneratedShape shape = test::small_shape("y-fork", 20000, options);
-    SkeletonGraph graph = build_skeleton_graph(shape.skeleton, "y");
-    BoneAssignment bones = assign_points_to_bones(graph, shape.cloud, "y");
+    const auto [shape, graph, bones] = test::ShapeWithBones("y-fork", 20000, options);
     TubeSkeleton spread = spread_acute_junctions(graph, bones, 75.0 * M_PI / 180.0, "y");
     int junctions = 0, ends = 0;
     for (size_t v = 0; v < spread.graph.node_count(); ++v) {
@@ -141,9 +137,7 @@ TEST(AcuteJunctions, ForksAreNotMovedIntoAnotherArmsTube) {
     ShapeOptions options;
     options.arms = arms;
     options.angle_degrees = 20;
-    GeneratedShape shape = test::small_shape(shape_name, 20000, options);
-    SkeletonGraph graph = build_skeleton_graph(shape.skeleton, shape_name);
-    BoneAssignment bones = assign_points_to_bones(graph, shape.cloud, shape_name);
+    const auto [shape, graph, bones] = test::ShapeWithBones(shape_name, 20000, options);
     TubeSkeleton spread = spread_acute_junctions(graph, bones, 75.0 * M_PI / 180.0, shape_name);
     if (std::string(shape_name) == "star") {
       EXPECT_EQ(spread.graph.node_count(), graph.node_count()) << arms << " arms";
@@ -161,9 +155,7 @@ TEST(AcuteJunctions, ForksAreNotMovedIntoAnotherArmsTube) {
 TEST(AcuteJunctions, AForkShortOfRoomMovesPartway) {
   ShapeOptions options;
   options.arms = 7;
-  GeneratedShape shape = test::small_shape("planar-star", 20000, options);
-  SkeletonGraph graph = build_skeleton_graph(shape.skeleton, "planar");
-  BoneAssignment bones = assign_points_to_bones(graph, shape.cloud, "planar");
+  const auto [shape, graph, bones] = test::ShapeWithBones("planar-star", 20000, options);
   TubeSkeleton spread = spread_acute_junctions(graph, bones, 75.0 * M_PI / 180.0, "planar");
   EXPECT_EQ(junction_count(spread.graph), 4);
   for (size_t v = 0; v < spread.graph.node_count(); ++v) {
