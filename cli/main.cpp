@@ -162,6 +162,15 @@ struct FitCommand {
                     "first cell only)")
         ->check(range("hit_band"))
         ->capture_default_str();
+    add_word_option(app, "--facing-cells", e.facing_cells, on_off_words(),
+                    "robust mode, on a scan with normals: rays pass through cells whose normals face away from the "
+                    "vertex (on, off)");
+    app->add_option(
+           "--min-facing", e.min_facing,
+           "robust mode: the least cosine of the angle between a cell's scan normal and the vertex normal for a "
+           "ray to hit the cell (-1 to 0.95)")
+        ->check(range("min_facing"))
+        ->capture_default_str();
     app->add_option("--iterations", e.iterations, "maximal number of iterations")->capture_default_str();
     app->add_option("--tolerance", e.tolerance,
                     "stop when the error level improves by less than this fraction (0 = never)")

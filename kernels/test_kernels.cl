@@ -10,7 +10,7 @@ __kernel void test_ray_hits(__global const float* origins, __global const float*
                             __global const float* node_bounds, __global const int* node_children,
                             __global const uint* cell_bones, __global const uint* visible, const uint visible_count,
                             __global int* cells, const uint rays, const uint origin_count) {
-  mcq_cell_filter filter;
+  mcq_cell_filter filter = mcq_no_cell_filter();
   filter.cell_bones = cell_bones;
   filter.visible = visible;
   filter.count = visible_count;

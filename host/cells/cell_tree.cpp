@@ -280,7 +280,7 @@ float second_nearest_distance2(const CellTree& cells, const Eigen::Vector3f& q) 
 }  // namespace
 
 size_t CellTree::byte_size() const {
-  return points.size() * 4 + cell_offsets.size() * 4 + cell_centroids.size() * 4 + cell_normals.size() * 4 +
+  return points.size() * 4 + cell_offsets.size() * 4 + cell_centroids.size() * 4 + cell_normals.size() * 4 + cell_facing.size() * 4 +
          node_bounds.size() * 4 + node_children.size() * 4;
 }
 
@@ -305,6 +305,7 @@ CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size, bool pad_box
                            std::to_string(MCQ_MAX_TREE_DEPTH) + " the traversal supports (many duplicate points?)");
   cells.cell_centroids.resize(3 * leaves);
   cells.cell_normals.resize(3 * leaves);
+  cells.cell_facing.assign(3 * leaves, 0.0f);  // no scan normals yet: every cell faces every way
 #pragma omp parallel for schedule(dynamic, 256)
   for (long c = 0; c < long(leaves); ++c) {
     uint32_t first = cells.cell_offsets[size_t(c)], last = cells.cell_offsets[size_t(c) + 1];

@@ -17,6 +17,9 @@ struct CellTree {
   std::vector<uint32_t> cell_offsets;  //!< cell c holds points [offsets[c], offsets[c+1])
   std::vector<float> cell_centroids;   //!< 3 per cell: the paper's g_l
   std::vector<float> cell_normals;     //!< 3 per cell: the paper's t_l (least-squares plane normal)
+  //! 3 per cell: the mean of the scan's unit outward normals over the cell
+  //! (cells/cell_facing.h); zero where the scan has none.
+  std::vector<float> cell_facing;
   std::vector<float> node_bounds;      //!< 6 per node: min xyz, max xyz (leaves padded, see build_cell_tree)
   std::vector<int32_t> node_children;  //!< 2 per node; a leaf stores -1 - cell, -1
   int depth = 0;                       //!< longest root-to-leaf path, in edges
@@ -32,7 +35,8 @@ struct CellTree {
 //! which must outlive the view.
 inline device::mcq_cells cells_view(const CellTree& cells) {
   return {cells.node_bounds.data(), cells.node_children.data(),  cells.cell_offsets.data(),
-          cells.points.data(),      cells.cell_centroids.data(), cells.cell_normals.data()};
+          cells.points.data(),      cells.cell_centroids.data(), cells.cell_normals.data(),
+          cells.cell_facing.data()};
 }
 
 //! The paper's error level e-bar: the mean over the vertices (`positions`,

@@ -48,6 +48,14 @@ struct EvolutionParameters {
   //! crosses within this fraction of epsilon of its first hit, instead of
   //! the first cell's alone (0 = the first cell, the paper's; docs/DESIGN.md).
   double hit_band = 0.4;
+  //! Robust mode, on a scan with normals: rays pass through cells whose
+  //! scan normals face away from the vertex's normal (the far wall of a
+  //! thin part, the other side of a crease), cells/cell_facing.h.
+  bool facing_cells = true;
+  //! The least cosine of the angle between a cell's scan normal and the
+  //! vertex normal for a ray to hit the cell, in [-1, 0.95] (cells with no
+  //! normals, or normals that disagree, stay visible).
+  double min_facing = 0.7;
 };
 
 }  // namespace mcquad

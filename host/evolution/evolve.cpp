@@ -10,7 +10,7 @@ namespace mcquad {
 
 // The step parameters cross to the device as one kernel argument: 4-byte
 // fields only, so the layout is the same on both sides.
-static_assert(sizeof(device::mcq_step_params) == 15 * 4, "mcq_step_params must stay 4-byte fields");
+static_assert(sizeof(device::mcq_step_params) == 17 * 4, "mcq_step_params must stay 4-byte fields");
 
 device::mcq_step_params make_step_params(const EvolutionParameters& parameters, unsigned iteration) {
   device::mcq_step_params params;
@@ -32,6 +32,8 @@ device::mcq_step_params make_step_params(const EvolutionParameters& parameters, 
   params.own_cells = robust && parameters.own_cells ? 1u : 0u;
   params.local_epsilon = robust && parameters.local_epsilon ? 1u : 0u;
   params.band = robust ? float(parameters.hit_band * parameters.epsilon) : 0.0f;
+  params.facing_cells = robust && parameters.facing_cells ? 1u : 0u;
+  params.min_facing = float(parameters.min_facing);
   return params;
 }
 

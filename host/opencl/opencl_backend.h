@@ -38,7 +38,7 @@ class OpenCLBackend : public EvolutionBackend {
   cl::CommandQueue queue_;
   cl::Program program_;
   cl::Kernel evolve_kernel_, normals_kernel_, errors_kernel_, reduce_kernel_, relax_kernel_;
-  Floats node_bounds_, points_, cell_centroids_, cell_normals_;
+  Floats node_bounds_, points_, cell_centroids_, cell_normals_, cell_facing_;
   DeviceArray<int32_t> node_children_;
   Indices cell_offsets_, faces_, vertex_face_offsets_, vertex_faces_, boundary_;
   Floats positions_, next_positions_, normals_, errors_, partial_sums_, total_;

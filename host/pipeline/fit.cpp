@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "core/errors.h"
+#include "cells/cell_facing.h"
 #include "io/mesh_io.h"
 #include "io/point_cloud_io.h"
 #include "io/skeleton_io.h"
@@ -91,7 +92,7 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
   // the cloud, which their steps reach slowly (docs/DESIGN.md).
   const InitialMeshOptions initial_options = effective_initial_options(options);
   EvolutionSetup setup =
-      prepare_evolution(graph, cloud, initial_options, options.leaf_size, skeleton_path, scope, &timer);
+      prepare_evolution(graph, cloud, initial_options, options.leaf_size, skeleton_path, scope, &timer, &oriented);
   if (!options.construction_skeleton.empty())
     write_skeleton_obj(options.construction_skeleton,
                        SkeletonData{setup.initial.skeleton.graph.positions, setup.initial.skeleton.graph.edges});
@@ -111,7 +112,7 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
                          setup.initial.finer_levels};
   if (setup.cells.cell_count() > 0)
     report.cells = FitReport::Cells{setup.cells.cell_count(), setup.cells.node_count(), setup.cells.depth,
-                                    double(setup.cells.byte_size()) / 1e6};
+                                    double(setup.cells.byte_size()) / 1e6, facing_fraction(setup.cells)};
   if (options.evolve && setup.initial.finer_levels > 0) {
     report.coarse_evolution = evolve_mesh(setup, options, parameters, result.mesh, timer, "coarse_");
     timer.run("refine_fitted", [&] {

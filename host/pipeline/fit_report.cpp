@@ -18,6 +18,8 @@ nlohmann::json to_json(const FitReport::Parameters& p) {
           {"own_cells", robust && e.own_cells},
           {"local_epsilon", robust && e.local_epsilon},
           {"hit_band", robust ? e.hit_band : 0.0},
+          {"facing_cells", robust && e.facing_cells},
+          {"min_facing", e.min_facing},
           {"cones", e.cones},
           {"generators", e.generators},
           {"alpha_max", e.alpha_max},
@@ -75,7 +77,8 @@ nlohmann::json to_json(const FitReport& r) {
     report["cells"] = {{"cells", r.cells->cells},
                        {"tree_nodes", r.cells->tree_nodes},
                        {"depth", r.cells->depth},
-                       {"megabytes", r.cells->megabytes}};
+                       {"megabytes", r.cells->megabytes},
+                       {"facing_fraction", r.cells->facing_fraction}};
   if (r.evolution) {
     report["backend"] = {{"name", r.evolution->backend}, {"device", r.evolution->device}};
     report["evolution"] = to_json(*r.evolution);

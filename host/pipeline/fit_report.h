@@ -40,6 +40,7 @@ struct FitReport {
     size_t cells = 0, tree_nodes = 0;
     int depth = 0;
     double megabytes = 0;
+    double facing_fraction = 0;  //!< share of the cells the scan's normals gave a facing (cells/cell_facing.h)
   };
   struct Evolution {
     std::string backend, device;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <memory>
 
+#include "cells/cell_facing.h"
+
 namespace mcquad {
 
 double median_bone_radius(const BoneAssignment& bones) {
@@ -22,7 +24,8 @@ size_t cell_leaf_size(size_t requested, size_t points) {
 }
 
 EvolutionSetup prepare_evolution(const SkeletonGraph& graph, const PointCloud& cloud, const InitialMeshOptions& options,
-                                 size_t leaf_size, const std::string& source, SetupScope scope, StageTimer* timer) {
+                                 size_t leaf_size, const std::string& source, SetupScope scope, StageTimer* timer,
+                                 const OrientedSample* scan_normals) {
   StageTimer own_timer;
   StageTimer& stages = timer ? *timer : own_timer;
   EvolutionSetup setup;
@@ -52,6 +55,13 @@ EvolutionSetup prepare_evolution(const SkeletonGraph& graph, const PointCloud& c
   // back before the device and the metrics add their own.
   malloc_trim(0);
   if (scope == SetupScope::kCells) return setup;
+  stages.run("cell_facing", [&] {
+    if (scan_normals)
+      orient_cells(setup.cells, *scan_normals);
+    else
+      orient_cells(setup.cells, cloud.oriented.empty() ? oriented_sample(cloud) : cloud.oriented);
+    return 0;
+  });
   setup.arrays = flatten_mesh(setup.initial.mesh);
   setup.regions = stages.run("regions", [&] {
     return build_skeleton_regions(setup.initial.skeleton, setup.cells, setup.arrays, setup.median_radius);

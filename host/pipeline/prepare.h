@@ -56,9 +56,11 @@ struct EvolutionSetup {
 //! regions. The fit, `mcquad metrics`, the tests and the benchmarks all
 //! call it. The point index is freed before the cells are built, so the
 //! two trees over the cloud never coexist (docs/PERFORMANCE.md, memory).
-//! `leaf_size` as in cell_leaf_size (0: automatic).
+//! `leaf_size` as in cell_leaf_size (0: automatic). The cells face the way
+//! the scan's normals say (orient_cells): those of `scan_normals`, or when
+//! it is null the cloud's own (cloud.oriented, else cloud.normals).
 EvolutionSetup prepare_evolution(const SkeletonGraph& graph, const PointCloud& cloud, const InitialMeshOptions& options,
                                  size_t leaf_size, const std::string& source, SetupScope scope = SetupScope::kEvolution,
-                                 StageTimer* timer = nullptr);
+                                 StageTimer* timer = nullptr, const OrientedSample* scan_normals = nullptr);
 
 }  // namespace mcquad

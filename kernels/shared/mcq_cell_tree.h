@@ -10,14 +10,19 @@
 #ifndef MCQ_CELL_TREE_H
 #define MCQ_CELL_TREE_H
 
-/* Which cells a traversal may hit (robust mode's skeleton regions,
- * host/cells/skeleton_regions.h): a cell is visible when its bone,
- * cell_bones[cell], is among the `count` bones in `visible`; with count 0
- * every cell is. */
+/* Which cells a traversal may hit, in robust mode (host/cells/skeleton_regions.h,
+ * host/cells/cell_facing.h): a cell is visible when its bone, cell_bones[cell],
+ * is among the `count` bones in `visible` (with count 0 every bone is), and,
+ * with `facing` set, when the scan's outward direction over the cell,
+ * facing[cell] (unit, or zero where unknown), is within the angle whose
+ * cosine is min_facing of `normal`. Unknown cells stay visible. */
 typedef struct {
   const MCQ_GLOBAL mcq_uint* cell_bones;
   const MCQ_GLOBAL mcq_uint* visible;
   mcq_uint count;
+  const MCQ_GLOBAL float* facing;
+  mcq_vec3 normal;
+  float min_facing;
 } mcq_cell_filter;
 
 MCQ_FN mcq_cell_filter mcq_no_cell_filter(void) {
@@ -25,10 +30,17 @@ MCQ_FN mcq_cell_filter mcq_no_cell_filter(void) {
   filter.cell_bones = 0;
   filter.visible = 0;
   filter.count = 0u;
+  filter.facing = 0;
+  filter.normal = mcq_make_vec3(0.0f, 0.0f, 0.0f);
+  filter.min_facing = 0.0f;
   return filter;
 }
 
 MCQ_FN int mcq_cell_is_visible(mcq_cell_filter filter, int cell) {
+  if (filter.facing) {
+    mcq_vec3 f = mcq_load3(filter.facing, (mcq_uint)cell);
+    if (mcq_dot(f, filter.normal) < filter.min_facing * mcq_dot(f, f)) return 0;
+  }
   if (filter.count == 0u) return 1;
   mcq_uint bone = filter.cell_bones[cell];
   for (mcq_uint k = 0; k < filter.count; ++k)

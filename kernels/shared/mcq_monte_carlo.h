@@ -22,6 +22,8 @@ typedef struct {
   mcq_uint local_epsilon;   /* 1: epsilon and reach scale with the vertex's local radius (skeleton regions) */
   float band; /* > 0: a ray's d averages every cell within this distance of its first hit; 0: the first cell (the paper)
                */
+  mcq_uint facing_cells; /* 1: rays pass through cells whose scan normals face away from the vertex's normal */
+  float min_facing;      /* with facing_cells, the least dot(cell facing, vertex normal) of a cell a ray may hit */
 } mcq_step_params;
 
 /* Robust mode's skeleton regions, as laid out by host/cells/skeleton_regions.h. */
@@ -41,6 +43,7 @@ typedef struct {
   const MCQ_GLOBAL float* points;
   const MCQ_GLOBAL float* cell_centroids;
   const MCQ_GLOBAL float* cell_normals;
+  const MCQ_GLOBAL float* cell_facing;
 } mcq_cells;
 
 /* The quad mesh's connectivity, as laid out by host/mesh/mesh_arrays.h
@@ -52,10 +55,17 @@ typedef struct {
   const MCQ_GLOBAL mcq_uint* boundary;
 } mcq_topology;
 
-/* The cells vertex v may hit: those of the bones near its own with
- * params.own_cells, else all. */
-MCQ_FN mcq_cell_filter mcq_vertex_cell_filter(mcq_regions regions, mcq_uint v, mcq_step_params params) {
+/* The cells vertex v, of normal n, may hit: with params.facing_cells those
+ * whose scan normals do not face away from n, and with params.own_cells those
+ * of the bones near its own; else all. */
+MCQ_FN mcq_cell_filter mcq_vertex_cell_filter(mcq_regions regions, const MCQ_GLOBAL float* cell_facing, mcq_uint v,
+                                              mcq_vec3 n, mcq_step_params params) {
   mcq_cell_filter filter = mcq_no_cell_filter();
+  if (params.facing_cells) {
+    filter.facing = cell_facing;
+    filter.normal = n;
+    filter.min_facing = params.min_facing;
+  }
   if (!params.own_cells) return filter;
   mcq_uint bone = regions.vertex_bones[v];
   filter.cell_bones = regions.cell_bones;
@@ -167,12 +177,14 @@ MCQ_FN float mcq_band_distance(const MCQ_GLOBAL mcq_uint* cell_offsets, const MC
  * feasible minimal projections (|d| < epsilon) over all rays, 0 with none.
  * *feasible receives how many rays were feasible. Robust mode's regions
  * limit the cells the rays see and scale epsilon and the reach. */
-MCQ_FN float mcq_vertex_displacement(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
-                                     const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points,
-                                     mcq_regions regions, mcq_vec3 q, mcq_vec3 n, mcq_uint vertex,
+MCQ_FN float mcq_vertex_displacement(mcq_cells cells, mcq_regions regions, mcq_vec3 q, mcq_vec3 n, mcq_uint vertex,
                                      mcq_step_params params, mcq_uint* feasible) {
+  const MCQ_GLOBAL float* node_bounds = cells.node_bounds;
+  const MCQ_GLOBAL int* node_children = cells.node_children;
+  const MCQ_GLOBAL mcq_uint* cell_offsets = cells.cell_offsets;
+  const MCQ_GLOBAL float* points = cells.points;
   *feasible = 0u;
-  mcq_cell_filter filter = mcq_vertex_cell_filter(regions, vertex, params);
+  mcq_cell_filter filter = mcq_vertex_cell_filter(regions, cells.cell_facing, vertex, n, params);
   float scale = params.local_epsilon ? regions.vertex_scale[vertex] : 1.0f;
   float epsilon = params.epsilon * scale, reach = params.reach * scale, band = params.band * scale;
   if (mcq_dot(n, n) == 0.0f) return 0.0f;
@@ -184,7 +196,7 @@ MCQ_FN float mcq_vertex_displacement(const MCQ_GLOBAL float* node_bounds, const 
   for (mcq_uint first = 0; first < rays; first += MCQ_PACKET_SIZE) {
     int count = rays - first < MCQ_PACKET_SIZE ? (int)(rays - first) : MCQ_PACKET_SIZE;
     float dir_x[MCQ_PACKET_SIZE], dir_y[MCQ_PACKET_SIZE], dir_z[MCQ_PACKET_SIZE], entries[MCQ_PACKET_SIZE];
-    int cells[MCQ_PACKET_SIZE];
+    int hits[MCQ_PACKET_SIZE];
     for (int k = 0; k < count; ++k) {
       mcq_vec3 dir =
           mcq_ray_direction(n, i_axis, j_axis, first + (mcq_uint)k, params.cones, params.generators, params.alpha_max);
@@ -193,10 +205,10 @@ MCQ_FN float mcq_vertex_displacement(const MCQ_GLOBAL float* node_bounds, const 
       dir_z[k] = dir.z;
     }
     int leaves[MCQ_BAND_CANDIDATES], candidates = 0;
-    mcq_first_cell_hits(node_bounds, node_children, filter, q, dir_x, dir_y, dir_z, count, reach, band, cells, entries,
+    mcq_first_cell_hits(node_bounds, node_children, filter, q, dir_x, dir_y, dir_z, count, reach, band, hits, entries,
                         leaves, &candidates);
     for (int k = 0; k < count; ++k) {
-      if (cells[k] < 0) continue;
+      if (hits[k] < 0) continue;
       mcq_vec3 dir = mcq_make_vec3(dir_x[k], dir_y[k], dir_z[k]);
       mcq_uint ray = first + (mcq_uint)k;
       int in_band[MCQ_BAND_CELLS], banded = 0;
@@ -206,7 +218,7 @@ MCQ_FN float mcq_vertex_displacement(const MCQ_GLOBAL float* node_bounds, const 
        * more than MCQ_BAND_CANDIDATES leaves qualified, and the first cell
        * alone stands in if none is left. */
       float d = banded > 0 ? mcq_band_distance(cell_offsets, points, in_band, banded, q, dir, params, vertex, ray)
-                           : mcq_cell_distance(cell_offsets, points, cells[k], q, dir, params, vertex, ray, 0u);
+                           : mcq_cell_distance(cell_offsets, points, hits[k], q, dir, params, vertex, ray, 0u);
       if (MCQ_FABS(d) < epsilon) {
         sum += d;
         *feasible += 1u;
@@ -312,8 +324,7 @@ MCQ_FN mcq_vec3 mcq_evolve_vertex(const MCQ_GLOBAL float* positions, const MCQ_G
                                   mcq_step_params params, mcq_uint* feasible) {
   mcq_vec3 q = mcq_load3(positions, vertex);
   mcq_vec3 n = mcq_load3(normals, vertex);
-  float delta = mcq_vertex_displacement(cells.node_bounds, cells.node_children, cells.cell_offsets, cells.points,
-                                        regions, q, n, vertex, params, feasible);
+  float delta = mcq_vertex_displacement(cells, regions, q, n, vertex, params, feasible);
   mcq_vec3 target = mcq_add(q, mcq_scale(n, delta));
   int in_hole = *feasible == 0u && params.fill_holes && !mesh.boundary[vertex];
   if (in_hole)

@@ -201,6 +201,8 @@ def fit(
     local_epsilon: bool = True,
     coarse_to_fine: bool = True,
     hit_band: float = 0.4,
+    facing_cells: bool = True,
+    min_facing: float = 0.7,
     iterations: int = 20,
     tolerance: float = 0.0,
     seed: int = 1,
@@ -225,8 +227,9 @@ def fit(
             ``(nodes, edges)`` or a dict with those keys (0-based edges);
             None: extracted from the cloud first (:func:`extract_skeleton`).
         normals: the scan's outward normals, (N, 3), for the verdict's inward
-            check (default: the file's, when ``points`` is a path that has them;
-            without normals the skeleton tells inward).
+            check and robust mode's facing cells (default: the file's, when
+            ``points`` is a path that has them; without normals the skeleton
+            tells inward and every cell faces every way).
         ends: ``auto`` (decided from the cloud), ``open`` or ``capped``.
         start_fraction: initial mesh radius as a fraction of the local cloud radius (0.05 to 0.95).
         resolution: target edge length of the refined mesh (0: 16 vertices around a tube).
@@ -249,6 +252,10 @@ def fit(
         coarse_to_fine: robust mode, finer than the default resolution: evolve the default resolution's mesh
             first, then refine it and evolve again.
         hit_band: robust mode: a ray averages every cell within this fraction of epsilon of its first hit (0 to 1).
+        facing_cells: robust mode, on a scan with normals: rays pass through cells whose scan normals face away
+            from the vertex.
+        min_facing: robust mode: the least cosine of the angle between a cell's scan normal and the vertex
+            normal for a ray to hit the cell (-1 to 0.95).
         iterations: maximal number of iterations.
         tolerance: stop when the error level improves by less than this fraction (0: never).
         seed: random seed; the same seed gives the same mesh, bit for bit, as ``mcquad fit --seed``.

@@ -83,6 +83,8 @@ const FieldTable<FitOptions>& fit_fields() {
       {"local_epsilon", nested(&O::evolution, &E::local_epsilon)},
       {"coarse_to_fine", nested(&O::evolution, &E::coarse_to_fine)},
       {"hit_band", nested(&O::evolution, &E::hit_band)},
+      {"facing_cells", nested(&O::evolution, &E::facing_cells)},
+      {"min_facing", nested(&O::evolution, &E::min_facing)},
       {"iterations", nested(&O::evolution, &E::iterations)},
       {"tolerance", nested(&O::evolution, &E::tolerance)},
       {"seed", nested(&O::evolution, &E::seed)},

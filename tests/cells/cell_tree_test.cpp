@@ -209,7 +209,11 @@ struct BoneLabels {
   }
   device::mcq_cell_filter filter(bool on) const {
     device::mcq_cell_filter f = device::mcq_no_cell_filter();
-    if (on) f = {cell_bones.data(), visible.data(), uint32_t(visible.size())};
+    if (on) {
+      f.cell_bones = cell_bones.data();
+      f.visible = visible.data();
+      f.count = uint32_t(visible.size());
+    }
     return f;
   }
 };

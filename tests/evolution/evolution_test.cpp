@@ -293,13 +293,16 @@ TEST(OpenCLKernels, PhiloxRaysAndTraversalMatchTheHost) {
   std::vector<int> device_hits(size_t(count) * rays);
   queue.enqueueReadBuffer(hits, CL_TRUE, 0, device_hits.size() * 4, device_hits.data());
   size_t hit = 0;
+  device::mcq_cell_filter bone0_filter = device::mcq_no_cell_filter();
+  bone0_filter.cell_bones = f.regions.cell_bones.data();
+  bone0_filter.visible = seen_by_bone0.data();
+  bone0_filter.count = uint32_t(seen_by_bone0.size());
   for (size_t i = 0; i < device_hits.size(); ++i) {
     float entry;
-    int host = device::mcq_first_cell_hit(
-        f.cells.node_bounds.data(), f.cells.node_children.data(),
-        device::mcq_cell_filter{f.regions.cell_bones.data(), seen_by_bone0.data(), uint32_t(seen_by_bone0.size())},
-        device::mcq_load3(f.arrays.positions.data(), uint32_t(i / rays)),
-        device::mcq_load3(device_dirs.data(), uint32_t(i)), float(f.parameters.epsilon), &entry);
+    int host = device::mcq_first_cell_hit(f.cells.node_bounds.data(), f.cells.node_children.data(), bone0_filter,
+                                          device::mcq_load3(f.arrays.positions.data(), uint32_t(i / rays)),
+                                          device::mcq_load3(device_dirs.data(), uint32_t(i)),
+                                          float(f.parameters.epsilon), &entry);
     ASSERT_EQ(host, device_hits[i]) << "vertex " << i / rays << " ray " << i % rays;
     hit += host >= 0;
   }
