@@ -91,8 +91,11 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
   // resolution's fit, refined, instead of from the rough mesh 0.3 r inside
   // the cloud, which their steps reach slowly (docs/DESIGN.md).
   const InitialMeshOptions initial_options = effective_initial_options(options);
-  EvolutionSetup setup =
-      prepare_evolution(graph, cloud, initial_options, options.leaf_size, skeleton_path, scope, &timer, &oriented);
+  // The cells face the scan's normals only where the step will look (robust mode, facing cells on).
+  const bool facing = options.evolution.mode == EvolutionParameters::Mode::kRobust && options.evolution.facing_cells;
+  const OrientedSample no_normals;
+  EvolutionSetup setup = prepare_evolution(graph, cloud, initial_options, options.leaf_size, skeleton_path, scope,
+                                           &timer, facing ? &oriented : &no_normals);
   if (!options.construction_skeleton.empty())
     write_skeleton_obj(options.construction_skeleton,
                        SkeletonData{setup.initial.skeleton.graph.positions, setup.initial.skeleton.graph.edges});

@@ -53,7 +53,7 @@ struct EvolutionSetup {
 
 //! The one stage sequence from a skeleton graph to the evolution's inputs,
 //! each stage run under `timer`: point_index, radius, initial_mesh, cells,
-//! regions. The fit, `mcquad metrics`, the tests and the benchmarks all
+//! cell_facing, regions. The fit, `mcquad metrics`, the tests and the benchmarks all
 //! call it. The point index is freed before the cells are built, so the
 //! two trees over the cloud never coexist (docs/PERFORMANCE.md, memory).
 //! `leaf_size` as in cell_leaf_size (0: automatic). The cells face the way

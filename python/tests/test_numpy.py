@@ -52,17 +52,24 @@ def test_fit_from_arrays_gives_the_cli_mesh_byte_for_byte(t_shape, tmp_path, cli
     assert result.report["metrics"]["inward_measured_against"] == "scan normals"
     assert result.report["metrics"] == report["metrics"]
     assert result.report["verdict"] == report["verdict"]
-    # Without normals the skeleton tells inward; the mesh is the same.
+    # Without normals the skeleton tells inward and no cell faces any way: the
+    # mesh is the one the normals give with the facing cells off.
     by_skeleton = mcquad.fit(points, (skeleton.nodes, skeleton.edges), seed=7, backend="serial")
     assert by_skeleton.report["metrics"]["inward_measured_against"] == "skeleton"
-    np.testing.assert_array_equal(by_skeleton.vertices, result.vertices)
+    assert by_skeleton.report["cells"]["facing_fraction"] == 0
+    assert result.report["cells"]["facing_fraction"] > 0.99
+    unfaced = mcquad.fit(points, (skeleton.nodes, skeleton.edges), normals=normals, seed=7, backend="serial",
+                         facing_cells=False)
+    np.testing.assert_array_equal(by_skeleton.vertices, unfaced.vertices)
     assert result.report["parameters"] == report["parameters"]
 
 
 def test_fit_from_paths_equals_fit_from_arrays(t_shape):
     by_path = mcquad.fit(t_shape / "t-shape.ply", t_shape / "t-shape.skeleton.obj", iterations=3, backend="serial")
     shape = mcquad.generate("t-shape", points=20000, seed=4)
-    by_array = mcquad.fit(shape.points, shape.skeleton, iterations=3, backend="serial")
+    points, normals = mcquad.read_points(t_shape / "t-shape.ply", normals=True)
+    np.testing.assert_array_equal(points, shape.points)
+    by_array = mcquad.fit(shape.points, shape.skeleton, normals=normals, iterations=3, backend="serial")
     np.testing.assert_array_equal(by_path.vertices, by_array.vertices)
     np.testing.assert_array_equal(by_path.faces, by_array.faces)
     assert by_path.report["inputs"]["points"].endswith("t-shape.ply")
