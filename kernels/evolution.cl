@@ -5,17 +5,14 @@
 
 /* One Jacobi step: every vertex reads the old positions and normals and
  * writes its new position; the normals are updated by update_normals after. */
-__kernel void evolve_vertices(__global const float* positions, __global const float* normals,
-                              __global const float* initial_positions, __global const float* initial_normals,
-                              __global float* new_positions, __global const uint* faces,
-                              __global const uint* vertex_face_offsets, __global const uint* vertex_faces,
-                              __global const uint* boundary, __global const float* node_bounds,
-                              __global const int* node_children, __global const uint* cell_offsets,
-                              __global const float* points, __global const float* cell_facing,
-                              __global const uint* cell_bones,
-                              __global const uint* vertex_bones, __global const float* vertex_scale,
-                              __global const uint* visible_offsets, __global const uint* visible_bones,
-                              const mcq_step_params params, const uint vertex_count) {
+__kernel void evolve_vertices(
+    __global const float* positions, __global const float* normals, __global const float* initial_positions,
+    __global const float* initial_normals, __global float* new_positions, __global const uint* faces,
+    __global const uint* vertex_face_offsets, __global const uint* vertex_faces, __global const uint* boundary,
+    __global const float* node_bounds, __global const int* node_children, __global const uint* cell_offsets,
+    __global const float* points, __global const float* cell_facing, __global const uint* cell_bones,
+    __global const uint* vertex_bones, __global const float* vertex_scale, __global const uint* visible_offsets,
+    __global const uint* visible_bones, const mcq_step_params params, const uint vertex_count) {
   uint v = get_global_id(0);
   if (v >= vertex_count) return;
   mcq_topology mesh = {faces, vertex_face_offsets, vertex_faces, boundary};

@@ -280,8 +280,8 @@ float second_nearest_distance2(const CellTree& cells, const Eigen::Vector3f& q) 
 }  // namespace
 
 size_t CellTree::byte_size() const {
-  return points.size() * 4 + cell_offsets.size() * 4 + cell_centroids.size() * 4 + cell_normals.size() * 4 + cell_facing.size() * 4 +
-         node_bounds.size() * 4 + node_children.size() * 4;
+  return points.size() * 4 + cell_offsets.size() * 4 + cell_centroids.size() * 4 + cell_normals.size() * 4 +
+         cell_facing.size() * 4 + node_bounds.size() * 4 + node_children.size() * 4;
 }
 
 CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size, bool pad_boxes) {

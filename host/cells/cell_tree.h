@@ -34,9 +34,8 @@ struct CellTree {
 //! The cells as the shared kernel code reads them: pointers into `cells`,
 //! which must outlive the view.
 inline device::mcq_cells cells_view(const CellTree& cells) {
-  return {cells.node_bounds.data(), cells.node_children.data(),  cells.cell_offsets.data(),
-          cells.points.data(),      cells.cell_centroids.data(), cells.cell_normals.data(),
-          cells.cell_facing.data()};
+  return {cells.node_bounds.data(),    cells.node_children.data(), cells.cell_offsets.data(), cells.points.data(),
+          cells.cell_centroids.data(), cells.cell_normals.data(),  cells.cell_facing.data()};
 }
 
 //! The paper's error level e-bar: the mean over the vertices (`positions`,
