@@ -17,8 +17,8 @@ struct CellTree {
   std::vector<uint32_t> cell_offsets;  //!< cell c holds points [offsets[c], offsets[c+1])
   std::vector<float> cell_centroids;   //!< 3 per cell: the paper's g_l
   std::vector<float> cell_normals;     //!< 3 per cell: the paper's t_l (least-squares plane normal)
-  //! 3 per cell: the mean of the scan's unit outward normals over the cell
-  //! (cells/cell_facing.h); zero where the scan has none.
+  //! 3 per cell: the unit direction of the scan's outward normals in the
+  //! cell (cells/cell_facing.h); zero where they disagree or are unknown.
   std::vector<float> cell_facing;
   std::vector<float> node_bounds;      //!< 6 per node: min xyz, max xyz (leaves padded, see build_cell_tree)
   std::vector<int32_t> node_children;  //!< 2 per node; a leaf stores -1 - cell, -1
