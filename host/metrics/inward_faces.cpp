@@ -1,6 +1,6 @@
 #include "metrics/inward_faces.h"
 
-#include "core/point_index.h"
+#include "core/sorted_point_tree.h"
 #include "core/shared_math.h"
 #include "skeleton/bone_assignment.h"
 
@@ -49,7 +49,8 @@ std::vector<int> inward_face_indices(const QuadMesh& mesh, const SkeletonGraph& 
 }
 
 std::vector<int> faces_against_normals(const QuadMesh& mesh, const OrientedSample& oriented) {
-  PointIndex<float> index(oriented.points);
+  // Fit and metrics sort the sample spatially, so this tree builds in linear time.
+  SortedPointTree index(oriented.points);
   std::vector<char> against(mesh.n_faces(), 0);
 #pragma omp parallel for schedule(static)
   for (long f = 0; f < long(mesh.n_faces()); ++f) {
