@@ -100,7 +100,8 @@ std::vector<char> TriangleTree::wanted_nodes(const std::vector<char>* wanted) co
   return has;
 }
 
-std::vector<std::pair<int, int>> TriangleTree::split_pairs(const std::vector<char>& has_wanted, size_t count) const {
+std::vector<std::pair<int, int>> TriangleTree::split_pairs(const std::vector<char>& has_wanted, size_t count,
+                                                           float gap) const {
   // Breadth first: a pair splits into the pairs of its children, as the
   // traversal would, until there are enough or only leaves are left.
   std::vector<std::pair<int, int>> pairs{{0, 0}}, next;
@@ -110,7 +111,7 @@ std::vector<std::pair<int, int>> TriangleTree::split_pairs(const std::vector<cha
     for (auto [a, b] : pairs) {
       const Node& na = nodes_[size_t(a)];
       const Node& nb = nodes_[size_t(b)];
-      if ((!has_wanted[size_t(a)] && !has_wanted[size_t(b)]) || (a != b && !na.box.intersects(nb.box))) continue;
+      if ((!has_wanted[size_t(a)] && !has_wanted[size_t(b)]) || (a != b && !within_gap(na.box, nb.box, gap))) continue;
       if (a == b && na.count == 0) {
         next.insert(next.end(), {{na.first, na.first}, {na.first + 1, na.first + 1}, {na.first, na.first + 1}});
         split = true;
@@ -134,18 +135,13 @@ std::pair<double, long> TriangleTree::nearest(const Eigen::Vector3d& p, long hin
   long best_triangle = -1;
   if (nodes_.empty()) return {best, best_triangle};
   if (hint >= 0 && size_t(hint) < size()) {
-    size_t t = size_t(hint);
-    best = point_triangle_distance(p, triangles_.corner(t, 0), triangles_.corner(t, 1), triangles_.corner(t, 2));
+    best = triangle_distance(p, size_t(hint));
     best_triangle = hint;
   }
   const Eigen::Vector3f q = p.cast<float>();
-  // Float boxes are rounded outward, but q is rounded too: a box's distance
-  // may come out a float's rounding over the truth, hence the slack: a box
-  // counts as beyond `best` when sqrt(d2) (1 - 1e-6) - 1e-6 |q| >= best,
-  // compared squared (no square root per box).
-  const double slack = 1e-6 * double(q.norm()), shrink2 = (1 - 1e-6) * (1 - 1e-6);
-  const auto box_distance = [&](const Box& box) { return double(box.squaredExteriorDistance(q)) * shrink2; };
-  const auto beyond_best = [&](double scaled_d2) { return scaled_d2 >= (best + slack) * (best + slack); };
+  const double slack = rounding_slack(q);
+  const auto box_distance = [&](const Box& box) { return box_distance2(box, q); };
+  const auto beyond_best = [&](double scaled_d2) { return beyond(scaled_d2, best, slack); };
   std::pair<double, int> stack[128];
   int top = 0;
   stack[top++] = {0.0, 0};
@@ -157,8 +153,7 @@ std::pair<double, long> TriangleTree::nearest(const Eigen::Vector3d& p, long hin
       for (int k = node.first; k < node.first + node.count; ++k) {
         size_t t = size_t(order_[size_t(k)]);
         if (beyond_best(box_distance(boxes_[t]))) continue;  // a float test spares most exact ones
-        double d =
-            point_triangle_distance(p, triangles_.corner(t, 0), triangles_.corner(t, 1), triangles_.corner(t, 2));
+        double d = triangle_distance(p, t);
         if (d < best) best = d, best_triangle = long(t);
       }
       continue;

@@ -55,16 +55,34 @@ class TriangleTree {
   }
 
   //! Calls `visit(a, b)` once for every unordered pair of distinct triangles
-  //! whose boxes overlap and of which at least one is `wanted` (per
-  //! triangle, nonzero; null: all). One traversal of the tree against
-  //! itself; on more than `parallel_above` triangles the threads share it,
-  //! `visit` then being called from several at once with its thread's
-  //! number (0 to omp_get_max_threads() - 1) as the third argument.
+  //! whose boxes overlap, or come within `gap`, and of which at least one
+  //! is `wanted` (per triangle, nonzero; null: all). One traversal of the
+  //! tree against itself; on more than `parallel_above` triangles the
+  //! threads share it, `visit` then being called from several at once with
+  //! its thread's number (0 to omp_get_max_threads() - 1) as the third
+  //! argument.
   template <typename Visit>
-  void for_each_overlapping_pair(const std::vector<char>* wanted, Visit&& visit, size_t parallel_above = 8192) const;
+  void for_each_overlapping_pair(const std::vector<char>* wanted, Visit&& visit, size_t parallel_above = 8192,
+                                 float gap = 0.0f) const;
 
   const Box& box(size_t triangle) const { return boxes_[triangle]; }
   size_t size() const { return boxes_.size(); }
+
+  //! The exact distance from `p` to a triangle.
+  double triangle_distance(const Eigen::Vector3d& p, size_t triangle) const {
+    return point_triangle_distance(p, triangles_.corner(triangle, 0), triangles_.corner(triangle, 1),
+                                   triangles_.corner(triangle, 2));
+  }
+  //! Boxes are floats rounded outward, but a query q is rounded too: a
+  //! box's distance may come out a float's rounding over the truth. So a
+  //! box counts as beyond `best` (exact) when sqrt(d2) (1 - 1e-6) - slack
+  //! >= best, with slack = 1e-6 |q|, compared squared (no square root per
+  //! box); box_distance2 gives d2 (1 - 1e-6)^2.
+  static double box_distance2(const Box& box, const Eigen::Vector3f& q) {
+    return double(box.squaredExteriorDistance(q)) * ((1 - 1e-6) * (1 - 1e-6));
+  }
+  static double rounding_slack(const Eigen::Vector3f& q) { return 1e-6 * double(q.norm()); }
+  static bool beyond(double box_d2, double best, double slack) { return box_d2 >= (best + slack) * (best + slack); }
 
  private:
   //! A leaf holds order_[first, first + count); an inner node (count 0) has
@@ -79,10 +97,14 @@ class TriangleTree {
   std::vector<char> wanted_nodes(const std::vector<char>* wanted) const;
   //! Node pairs (i <= j) whose overlapping triangle pairs together are all
   //! of them: at least `count` pairs where the tree is deep enough.
-  std::vector<std::pair<int, int>> split_pairs(const std::vector<char>& has_wanted, size_t count) const;
+  std::vector<std::pair<int, int>> split_pairs(const std::vector<char>& has_wanted, size_t count, float gap) const;
   template <typename Visit>
-  void visit_pairs_below(int i, int j, const std::vector<char>* wanted, const std::vector<char>& has_wanted,
+  void visit_pairs_below(int i, int j, const std::vector<char>* wanted, const std::vector<char>& has_wanted, float gap,
                          Visit&& visit, int thread) const;
+  //! Whether two boxes overlap or come within `gap` (per axis).
+  static bool within_gap(const Box& a, const Box& b, float gap) {
+    return (a.min().array() <= b.max().array() + gap).all() && (b.min().array() <= a.max().array() + gap).all();
+  }
 
   const MeshTriangles& triangles_;
   std::vector<Box> boxes_;
@@ -92,7 +114,7 @@ class TriangleTree {
 
 template <typename Visit>
 void TriangleTree::visit_pairs_below(int i, int j, const std::vector<char>* wanted, const std::vector<char>& has_wanted,
-                                     Visit&& visit, int thread) const {
+                                     float gap, Visit&& visit, int thread) const {
   std::pair<int, int> stack[256];
   int top = 0;
   stack[top++] = {i, j};
@@ -102,12 +124,12 @@ void TriangleTree::visit_pairs_below(int i, int j, const std::vector<char>* want
     if (!has_wanted[size_t(a)] && !has_wanted[size_t(b)]) continue;
     const Node& na = nodes_[size_t(a)];
     const Node& nb = nodes_[size_t(b)];
-    if (a != b && !na.box.intersects(nb.box)) continue;
+    if (a != b && !within_gap(na.box, nb.box, gap)) continue;
     if (na.count > 0 && nb.count > 0) {
       for (int x = na.first; x < na.first + na.count; ++x)
         for (int y = (a == b ? x + 1 : nb.first); y < nb.first + nb.count; ++y) {
           int s = order_[size_t(x)], t = order_[size_t(y)];
-          if ((is_wanted(s) || is_wanted(t)) && boxes_[size_t(s)].intersects(boxes_[size_t(t)]))
+          if ((is_wanted(s) || is_wanted(t)) && within_gap(boxes_[size_t(s)], boxes_[size_t(t)], gap))
             visit(size_t(std::min(s, t)), size_t(std::max(s, t)), thread);
         }
       continue;
@@ -127,18 +149,19 @@ void TriangleTree::visit_pairs_below(int i, int j, const std::vector<char>* want
 }
 
 template <typename Visit>
-void TriangleTree::for_each_overlapping_pair(const std::vector<char>* wanted, Visit&& visit,
-                                             size_t parallel_above) const {
+void TriangleTree::for_each_overlapping_pair(const std::vector<char>* wanted, Visit&& visit, size_t parallel_above,
+                                             float gap) const {
   if (nodes_.empty()) return;
   std::vector<char> has_wanted = wanted_nodes(wanted);
   if (size() <= parallel_above) {
-    visit_pairs_below(0, 0, wanted, has_wanted, visit, 0);
+    visit_pairs_below(0, 0, wanted, has_wanted, gap, visit, 0);
     return;
   }
-  std::vector<std::pair<int, int>> tasks = split_pairs(has_wanted, 256);
+  std::vector<std::pair<int, int>> tasks = split_pairs(has_wanted, 256, gap);
 #pragma omp parallel for schedule(dynamic, 1)
   for (long k = 0; k < long(tasks.size()); ++k)
-    visit_pairs_below(tasks[size_t(k)].first, tasks[size_t(k)].second, wanted, has_wanted, visit, omp_get_thread_num());
+    visit_pairs_below(tasks[size_t(k)].first, tasks[size_t(k)].second, wanted, has_wanted, gap, visit,
+                      omp_get_thread_num());
 }
 
 }  // namespace mcquad

@@ -5,6 +5,7 @@
 
 #include "core/shared_math.h"
 #include "mesh/face_intersections.h"
+#include "mesh/triangle_neighbourhoods.h"
 #include "mesh/triangle_tree.h"
 
 namespace mcquad {
@@ -42,16 +43,18 @@ std::vector<double> mesh_to_cloud_distances(const QuadMesh& mesh, const CellTree
 std::vector<double> cloud_to_mesh_distances(const QuadMesh& mesh, const PointCloud& cloud, size_t max_points) {
   MeshTriangles triangles = triangulate(mesh);
   TriangleTree tree(triangles);
+  TriangleNeighbourhoods neighbourhoods(tree);
   size_t stride = cloud_sample_stride(cloud.size(), max_points);
   std::vector<double> out((cloud.size() + stride - 1) / stride);
   // Each thread takes a run of points, near each other where the cloud is
-  // sorted spatially (as fit sorts it): the last answer bounds the next search.
+  // sorted spatially (as fit sorts it): the neighbours of the last answer
+  // are most often all the next point needs to test.
 #pragma omp parallel
   {
     long hint = -1;
 #pragma omp for schedule(static)
     for (long i = 0; i < long(out.size()); ++i) {
-      auto [distance, triangle] = tree.nearest(cloud.points[size_t(i) * stride].cast<double>(), hint);
+      auto [distance, triangle] = neighbourhoods.nearest(cloud.points[size_t(i) * stride].cast<double>(), hint);
       out[size_t(i)] = distance;
       hint = triangle;
     }

@@ -1,9 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <mutex>
 #include <random>
 
 #include "helpers.h"
 #include "mesh/face_intersections.h"
+#include "mesh/triangle_neighbourhoods.h"
 #include "mesh/triangle_tree.h"
 
 namespace mcquad {
@@ -64,6 +66,55 @@ TEST(TriangleTree, OverlapQueryFindsExactlyTheOverlappingBoxes) {
       if (tree.box(other).intersects(tree.box(t))) expected.push_back(other);
     std::sort(found.begin(), found.end());
     EXPECT_EQ(found, expected) << "triangle " << t;
+  }
+}
+
+TEST(TriangleTree, PairsWithinAGapAreExactlyThoseOfAllPairs) {
+  MeshTriangles triangles = triangulate(folded_sheet(12, 5));
+  TriangleTree tree(triangles);
+  for (float gap : {0.0f, 0.3f, 1.5f})
+    for (size_t parallel_above : {size_t(8192), size_t(16)}) {
+      std::vector<std::pair<size_t, size_t>> found, expected;
+      std::mutex lock;
+      tree.for_each_overlapping_pair(
+          nullptr,
+          [&](size_t a, size_t b, int) {
+            std::lock_guard<std::mutex> guard(lock);
+            found.emplace_back(a, b);
+          },
+          parallel_above, gap);
+      for (size_t a = 0; a < triangles.size(); ++a)
+        for (size_t b = a + 1; b < triangles.size(); ++b) {
+          const TriangleTree::Box &x = tree.box(a), &y = tree.box(b);
+          if ((x.min().array() <= y.max().array() + gap).all() && (y.min().array() <= x.max().array() + gap).all())
+            expected.emplace_back(a, b);
+        }
+      std::sort(found.begin(), found.end());
+      EXPECT_EQ(found, expected) << "gap " << gap << ", parallel above " << parallel_above;
+    }
+}
+
+TEST(TriangleNeighbourhoods, NearestMatchesTheTreeAlongAWalkWithJumps) {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    MeshTriangles triangles = triangulate(folded_sheet(14, seed));
+    TriangleTree tree(triangles);
+    TriangleNeighbourhoods neighbourhoods(tree);
+    std::mt19937 random(seed + 20);
+    std::uniform_real_distribution<double> step(-0.3, 0.3), coordinate(-6.0, 20.0);
+    Eigen::Vector3d p(5, 5, 0);
+    long hint = -1;
+    for (int q = 0; q < 2000; ++q) {
+      // Mostly small steps near the sheet, as a sorted cloud's points come; now and then a jump.
+      if (q % 50 == 49)
+        p = Eigen::Vector3d(coordinate(random), coordinate(random), 0.3 * coordinate(random));
+      else
+        p += Eigen::Vector3d(step(random), step(random), step(random));
+      auto [distance, triangle] = neighbourhoods.nearest(p, hint);
+      ASSERT_GE(triangle, 0);
+      EXPECT_DOUBLE_EQ(distance, tree.nearest(p).first) << "seed " << seed << ", query " << q;
+      EXPECT_DOUBLE_EQ(distance, tree.triangle_distance(p, size_t(triangle)));
+      hint = triangle;
+    }
   }
 }
 
