@@ -171,6 +171,9 @@ struct FitCommand {
            "ray to hit the cell (-1 to 0.95)")
         ->check(range("min_facing"))
         ->capture_default_str();
+    add_word_option(app, "--curvature-correction", e.curvature_correction, on_off_words(),
+                    "robust mode: correct each sample's projection by the mesh's curvature, so that vertices settle "
+                    "on a curved surface, not inside it (on, off)");
     app->add_option("--iterations", e.iterations, "maximal number of iterations")->capture_default_str();
     app->add_option("--tolerance", e.tolerance,
                     "stop when the error level improves by less than this fraction (0 = never)")

@@ -56,6 +56,10 @@ struct EvolutionParameters {
   //! vertex normal for a ray to hit the cell, in [-1, 0.95] (cells with no
   //! normals, or normals that disagree, stay visible).
   double min_facing = 0.7;
+  //! Robust mode: each sample's projection onto a ray is corrected by the
+  //! mesh's mean curvature at the vertex, so that vertices settle on a curved
+  //! surface rather than inside it by the cells' sagitta (docs/DESIGN.md).
+  bool curvature_correction = true;
 };
 
 }  // namespace mcquad

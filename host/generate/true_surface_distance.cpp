@@ -6,14 +6,21 @@ namespace mcquad {
 
 TrueSurfaceDistance measure_true_surface_distance(const QuadMesh& mesh, const TubeSurface& surface) {
   std::vector<double> absolute, relative;
+  double signed_sum = 0;
   for (auto v : mesh.vertices()) {
     Eigen::Vector3d p = point_of(mesh, v);
-    int capsule = surface.nearest_capsule(p);
-    double d = std::abs(surface.signed_distance(p));
-    absolute.push_back(d);
-    relative.push_back(d / surface.capsules()[capsule].radius);
+    double radius = surface.capsules()[size_t(surface.nearest_capsule(p))].radius;
+    double d = surface.signed_distance(p);
+    absolute.push_back(std::abs(d));
+    relative.push_back(std::abs(d) / radius);
+    signed_sum += d / radius;
   }
-  return {summarize_distances(absolute), summarize_distances(relative), inward_area_fraction(mesh, surface)};
+  TrueSurfaceDistance out;
+  out.absolute = summarize_distances(absolute);
+  out.relative = summarize_distances(relative);
+  out.signed_relative_mean = relative.empty() ? 0.0 : signed_sum / double(relative.size());
+  out.inward_area_fraction = inward_area_fraction(mesh, surface);
+  return out;
 }
 
 double inward_area_fraction(const QuadMesh& mesh, const TubeSurface& surface) {
@@ -44,6 +51,7 @@ DistanceSummary cloud_to_mesh_relative_to_local_radius(const QuadMesh& mesh, con
 nlohmann::json to_json(const TrueSurfaceDistance& d) {
   return {{"absolute", to_json(d.absolute)},
           {"relative_to_radius", to_json(d.relative)},
+          {"signed_mean_relative_to_radius", d.signed_relative_mean},
           {"inward_area_fraction", d.inward_area_fraction}};
 }
 

@@ -13,6 +13,9 @@ namespace mcquad {
 //! model units and relative to the local tube radius (the nearest capsule's).
 struct TrueSurfaceDistance {
   DistanceSummary absolute, relative;
+  //! The mean of the signed distances relative to the local radius: below
+  //! zero where the vertices settle inside the surface on average.
+  double signed_relative_mean = 0;
   //! The share of the mesh's area whose faces point against the true
   //! surface's outward normal near them (issue 20: turned-over faces in the
   //! creases where tubes meet).

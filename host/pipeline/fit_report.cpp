@@ -20,6 +20,7 @@ nlohmann::json to_json(const FitReport::Parameters& p) {
           {"hit_band", robust ? e.hit_band : 0.0},
           {"facing_cells", robust && e.facing_cells},
           {"min_facing", e.min_facing},
+          {"curvature_correction", robust && e.curvature_correction},
           {"cones", e.cones},
           {"generators", e.generators},
           {"alpha_max", e.alpha_max},

@@ -24,6 +24,7 @@ typedef struct {
                */
   mcq_uint facing_cells; /* 1: rays pass through cells whose scan normals face away from the vertex's normal */
   float min_facing;      /* with facing_cells, the least dot(cell facing, vertex normal) of a cell a ray may hit */
+  mcq_uint curvature_correction; /* 1: each sample's projection is corrected by the mesh's curvature at the vertex */
 } mcq_step_params;
 
 /* Robust mode's skeleton regions, as laid out by host/cells/skeleton_regions.h. */
@@ -54,6 +55,16 @@ typedef struct {
   const MCQ_GLOBAL mcq_uint* vertex_faces;
   const MCQ_GLOBAL mcq_uint* boundary;
 } mcq_topology;
+
+/* A symmetric 3x3 matrix: the shape operator of mcq_vertex_shape_operator. */
+typedef struct {
+  float xx, xy, xz, yy, yz, zz;
+} mcq_shape_operator;
+
+MCQ_FN float mcq_shape_quadratic(mcq_shape_operator k, mcq_vec3 x) {
+  return k.xx * x.x * x.x + k.yy * x.y * x.y + k.zz * x.z * x.z +
+         2.0f * (k.xy * x.x * x.y + k.xz * x.x * x.z + k.yz * x.y * x.z);
+}
 
 /* The cells vertex v, of normal n, may hit: with params.facing_cells those
  * whose scan normals do not face away from n, and with params.own_cells those
@@ -128,8 +139,8 @@ MCQ_FN mcq_uint mcq_sample_index(mcq_uint seed, mcq_uint iteration, mcq_uint ver
  * unbiased, and averages the noise away (docs/DESIGN.md). `stream` tells
  * apart the cells of one ray's band, so each draws its own samples. */
 MCQ_FN float mcq_cell_distance(const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points, int cell,
-                               mcq_vec3 q, mcq_vec3 dir, mcq_step_params params, mcq_uint vertex, mcq_uint ray,
-                               mcq_uint stream) {
+                               mcq_vec3 q, mcq_vec3 dir, mcq_shape_operator shape, mcq_step_params params,
+                               mcq_uint vertex, mcq_uint ray, mcq_uint stream) {
   mcq_uint first = cell_offsets[cell];
   mcq_uint count = cell_offsets[cell + 1] - first;
   float d = MCQ_INFINITY, sum = 0.0f;
@@ -143,7 +154,16 @@ MCQ_FN float mcq_cell_distance(const MCQ_GLOBAL mcq_uint* cell_offsets, const MC
     mcq_philox_block words = mcq_philox4x32_10(counter, params.seed, params.iteration);
     for (mcq_uint w = 0; w < 4u && block * 4u + w < params.samples; ++w) {
       mcq_uint p = first + mcq_uniform_below(words.v[w], count);
-      float projection = mcq_dot(mcq_sub(mcq_load3(points, p), q), dir);
+      mcq_vec3 offset = mcq_sub(mcq_load3(points, p), q);
+      float projection = mcq_dot(offset, dir);
+      /* On a convex surface of shape operator K the ray meets it x.K.x / 2
+       * beyond a point x off the ray (x: its offset from the ray's line),
+       * while x stays well within the radius of curvature; the correction
+       * stops growing at a normal curvature of 0.3 / |x|, where that model
+       * no longer holds. */
+      mcq_vec3 off_ray = mcq_sub(offset, mcq_scale(dir, projection));
+      float length = MCQ_SQRT(mcq_dot(off_ray, off_ray));
+      projection += 0.5f * MCQ_FMIN(MCQ_FMAX(mcq_shape_quadratic(shape, off_ray), 0.0f), 0.3f * length);
       d = MCQ_FMIN(d, projection);
       sum += projection;
     }
@@ -161,15 +181,15 @@ MCQ_FN float mcq_cell_distance(const MCQ_GLOBAL mcq_uint* cell_offsets, const MC
  * sits inside the shell, so it settles at the shell's middle
  * (docs/DESIGN.md). */
 MCQ_FN float mcq_band_distance(const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points,
-                               const int* cells, int count, mcq_vec3 q, mcq_vec3 dir, mcq_step_params params,
-                               mcq_uint vertex, mcq_uint ray) {
+                               const int* cells, int count, mcq_vec3 q, mcq_vec3 dir, mcq_shape_operator shape,
+                               mcq_step_params params, mcq_uint vertex, mcq_uint ray) {
   /* The ray's m samples are shared among its band's cells (rounded up), so a
    * band costs about as many samples as the paper's single cell. */
   mcq_step_params shared = params;
   shared.samples = (params.samples + (mcq_uint)count - 1u) / (mcq_uint)count;
   float sum = 0.0f;
   for (int k = 0; k < count; ++k)
-    sum += mcq_cell_distance(cell_offsets, points, cells[k], q, dir, shared, vertex, ray, (mcq_uint)k);
+    sum += mcq_cell_distance(cell_offsets, points, cells[k], q, dir, shape, shared, vertex, ray, (mcq_uint)k);
   return sum / (float)count;
 }
 
@@ -177,8 +197,9 @@ MCQ_FN float mcq_band_distance(const MCQ_GLOBAL mcq_uint* cell_offsets, const MC
  * feasible minimal projections (|d| < epsilon) over all rays, 0 with none.
  * *feasible receives how many rays were feasible. Robust mode's regions
  * limit the cells the rays see and scale epsilon and the reach. */
-MCQ_FN float mcq_vertex_displacement(mcq_cells cells, mcq_regions regions, mcq_vec3 q, mcq_vec3 n, mcq_uint vertex,
-                                     mcq_step_params params, mcq_uint* feasible) {
+MCQ_FN float mcq_vertex_displacement(mcq_cells cells, mcq_regions regions, mcq_vec3 q, mcq_vec3 n,
+                                     mcq_shape_operator shape, mcq_uint vertex, mcq_step_params params,
+                                     mcq_uint* feasible) {
   const MCQ_GLOBAL float* node_bounds = cells.node_bounds;
   const MCQ_GLOBAL int* node_children = cells.node_children;
   const MCQ_GLOBAL mcq_uint* cell_offsets = cells.cell_offsets;
@@ -217,8 +238,9 @@ MCQ_FN float mcq_vertex_displacement(mcq_cells cells, mcq_regions regions, mcq_v
       /* banded is 0 with the band off; on, the first hit is in its band unless
        * more than MCQ_BAND_CANDIDATES leaves qualified, and the first cell
        * alone stands in if none is left. */
-      float d = banded > 0 ? mcq_band_distance(cell_offsets, points, in_band, banded, q, dir, params, vertex, ray)
-                           : mcq_cell_distance(cell_offsets, points, hits[k], q, dir, params, vertex, ray, 0u);
+      float d = banded > 0
+                    ? mcq_band_distance(cell_offsets, points, in_band, banded, q, dir, shape, params, vertex, ray)
+                    : mcq_cell_distance(cell_offsets, points, hits[k], q, dir, shape, params, vertex, ray, 0u);
       if (MCQ_FABS(d) < epsilon) {
         sum += d;
         *feasible += 1u;
@@ -287,6 +309,62 @@ MCQ_FN float mcq_offset(const MCQ_GLOBAL float* positions, const MCQ_GLOBAL floa
   return mcq_dot(mcq_sub(mcq_load3(positions, v), mcq_load3(initial_positions, v)), mcq_load3(initial_normals, v));
 }
 
+/* The mesh's shape operator at a vertex of normal n, as a symmetric 3x3
+ * matrix K in space (zero along n), so that x.K.x / |x|^2 is the normal
+ * curvature along a tangent direction x (positive where convex). Fitted by
+ * least squares to the normal curvatures 2 (q - p).n / |p - q|^2 toward
+ * the vertex's edge neighbours and diagonal corners p (which, unlike the
+ * edges of a regular vertex, span the twist term too). Each direction's
+ * curvature is capped at that of a sphere of 2.5 edges' radius: a round
+ * tube or cap is 16 edges round at the default resolution, and a junction
+ * block's sharper corner is not the surface's. Robust mode's curvature
+ * correction uses it (docs/DESIGN.md). */
+MCQ_FN mcq_shape_operator mcq_vertex_shape_operator(const MCQ_GLOBAL float* positions, const MCQ_GLOBAL mcq_uint* faces,
+                                                    const MCQ_GLOBAL mcq_uint* vertex_face_offsets,
+                                                    const MCQ_GLOBAL mcq_uint* vertex_faces, mcq_uint vertex,
+                                                    mcq_vec3 q, mcq_vec3 n) {
+  mcq_shape_operator k = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+  mcq_vec3 u_axis, v_axis;
+  mcq_cone_frame(n, &u_axis, &v_axis);
+  /* Normal equations of kappa = a u^2 + 2 b u v + c v^2 over the directions. */
+  float m00 = 0.0f, m01 = 0.0f, m02 = 0.0f, m11 = 0.0f, m12 = 0.0f, m22 = 0.0f;
+  float r0 = 0.0f, r1 = 0.0f, r2 = 0.0f, lengths = 0.0f, edges = 0.0f;
+  for (mcq_uint f = vertex_face_offsets[vertex]; f < vertex_face_offsets[vertex + 1]; ++f) {
+    mcq_uint face = vertex_faces[f];
+    for (mcq_uint c = 0; c < 4u; ++c) {
+      if (faces[4 * face + c] != vertex) continue;
+      for (mcq_uint step = 1u; step <= 3u; ++step) {
+        mcq_vec3 e = mcq_sub(mcq_load3(positions, faces[4 * face + (c + step) % 4u]), q);
+        float length2 = mcq_dot(e, e), u = mcq_dot(e, u_axis), v = mcq_dot(e, v_axis), t2 = u * u + v * v;
+        if (length2 <= 0.0f || t2 <= 0.0f) continue;
+        if (step != 2u) {
+          lengths += MCQ_SQRT(length2);
+          edges += 1.0f;
+        }
+        float kappa = -2.0f * mcq_dot(e, n) / length2;
+        float w0 = u * u / t2, w1 = 2.0f * u * v / t2, w2 = v * v / t2;
+        m00 += w0 * w0, m01 += w0 * w1, m02 += w0 * w2, m11 += w1 * w1, m12 += w1 * w2, m22 += w2 * w2;
+        r0 += w0 * kappa, r1 += w1 * kappa, r2 += w2 * kappa;
+      }
+    }
+  }
+  float det = m00 * (m11 * m22 - m12 * m12) - m01 * (m01 * m22 - m12 * m02) + m02 * (m01 * m12 - m11 * m02);
+  if (edges == 0.0f || !(MCQ_FABS(det) > 1e-6f)) return k;
+  float a = (r0 * (m11 * m22 - m12 * m12) - m01 * (r1 * m22 - m12 * r2) + m02 * (r1 * m12 - m11 * r2)) / det;
+  float b = (m00 * (r1 * m22 - m12 * r2) - r0 * (m01 * m22 - m12 * m02) + m02 * (m01 * r2 - r1 * m02)) / det;
+  float c = (m00 * (m11 * r2 - r1 * m12) - m01 * (m01 * r2 - r1 * m02) + r0 * (m01 * m12 - m11 * m02)) / det;
+  float cap = 0.4f * edges / lengths;
+  a = MCQ_FMIN(a, cap), c = MCQ_FMIN(c, cap), b = MCQ_FMAX(MCQ_FMIN(b, cap), -cap);
+  /* K = a u u' + b (u v' + v u') + c v v' */
+  k.xx = a * u_axis.x * u_axis.x + 2.0f * b * u_axis.x * v_axis.x + c * v_axis.x * v_axis.x;
+  k.yy = a * u_axis.y * u_axis.y + 2.0f * b * u_axis.y * v_axis.y + c * v_axis.y * v_axis.y;
+  k.zz = a * u_axis.z * u_axis.z + 2.0f * b * u_axis.z * v_axis.z + c * v_axis.z * v_axis.z;
+  k.xy = a * u_axis.x * u_axis.y + b * (u_axis.x * v_axis.y + v_axis.x * u_axis.y) + c * v_axis.x * v_axis.y;
+  k.xz = a * u_axis.x * u_axis.z + b * (u_axis.x * v_axis.z + v_axis.x * u_axis.z) + c * v_axis.x * v_axis.z;
+  k.yz = a * u_axis.y * u_axis.z + b * (u_axis.y * v_axis.z + v_axis.y * u_axis.z) + c * v_axis.y * v_axis.z;
+  return k;
+}
+
 /* Robust mode's hole filling: the mean offset of the vertex's edge
  * neighbours (each counted twice, once per face on either side of the edge)
  * laid along its own initial normal from its initial position. Where the
@@ -324,7 +402,10 @@ MCQ_FN mcq_vec3 mcq_evolve_vertex(const MCQ_GLOBAL float* positions, const MCQ_G
                                   mcq_step_params params, mcq_uint* feasible) {
   mcq_vec3 q = mcq_load3(positions, vertex);
   mcq_vec3 n = mcq_load3(normals, vertex);
-  float delta = mcq_vertex_displacement(cells, regions, q, n, vertex, params, feasible);
+  mcq_shape_operator shape = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+  if (params.curvature_correction && !mesh.boundary[vertex])
+    shape = mcq_vertex_shape_operator(positions, mesh.faces, mesh.vertex_face_offsets, mesh.vertex_faces, vertex, q, n);
+  float delta = mcq_vertex_displacement(cells, regions, q, n, shape, vertex, params, feasible);
   mcq_vec3 target = mcq_add(q, mcq_scale(n, delta));
   int in_hole = *feasible == 0u && params.fill_holes && !mesh.boundary[vertex];
   if (in_hole)

@@ -203,6 +203,7 @@ def fit(
     hit_band: float = 0.4,
     facing_cells: bool = True,
     min_facing: float = 0.7,
+    curvature_correction: bool = True,
     iterations: int = 20,
     tolerance: float = 0.0,
     seed: int = 1,
@@ -256,6 +257,8 @@ def fit(
             from the vertex.
         min_facing: robust mode: the least cosine of the angle between a cell's scan normal and the vertex
             normal for a ray to hit the cell (-1 to 0.95).
+        curvature_correction: robust mode: correct each sample's projection by the mesh's curvature at the
+            vertex, so vertices settle on a curved surface and not inside it.
         iterations: maximal number of iterations.
         tolerance: stop when the error level improves by less than this fraction (0: never).
         seed: random seed; the same seed gives the same mesh, bit for bit, as ``mcquad fit --seed``.

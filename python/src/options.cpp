@@ -85,6 +85,7 @@ const FieldTable<FitOptions>& fit_fields() {
       {"hit_band", nested(&O::evolution, &E::hit_band)},
       {"facing_cells", nested(&O::evolution, &E::facing_cells)},
       {"min_facing", nested(&O::evolution, &E::min_facing)},
+      {"curvature_correction", nested(&O::evolution, &E::curvature_correction)},
       {"iterations", nested(&O::evolution, &E::iterations)},
       {"tolerance", nested(&O::evolution, &E::tolerance)},
       {"seed", nested(&O::evolution, &E::seed)},

@@ -127,6 +127,28 @@ TEST_P(OnEachBackend, RobustModeNoiseDoesNotPullTheMeshOffTheSurface) {
   }
 }
 
+//! The mean of a cell's sample projections settles a vertex inside a convex
+//! surface, by about the cells' sagitta (spacing^2 / 8r); correcting each
+//! sample by the mesh's curvature at the vertex removes that bias
+//! (docs/DESIGN.md, "Curvature correction").
+TEST_P(OnEachBackend, RobustModeCurvatureCorrectionRemovesTheInwardBias) {
+  REQUIRE_BACKEND(backend, GetParam());
+  Fixture f("tube", 10000);
+  auto signed_mean = [&](bool correction) {
+    f.parameters.curvature_correction = correction;
+    std::vector<float> positions = f.evolve_on(*backend, EvolutionParameters::Mode::kRobust);
+    double sum = 0;
+    for (size_t v = 0; v < positions.size() / 3; ++v) {
+      Eigen::Vector3d x(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
+      sum += f.shape.surface.signed_distance(x) / f.shape.surface.capsules()[f.shape.surface.nearest_capsule(x)].radius;
+    }
+    return sum / double(positions.size() / 3);
+  };
+  double off = signed_mean(false), on = signed_mean(true);
+  EXPECT_LT(off, -0.002) << "without the correction the vertices settle inside";
+  EXPECT_LT(std::abs(on), 0.001) << "without it: " << off;
+}
+
 //! Issue 6: where the scan has holes, the mesh spans them instead of
 //! staying dented where the initial mesh put it (about 0.3 r inside).
 TEST_P(OnEachBackend, RobustModeSpansHolesInTheScan) {

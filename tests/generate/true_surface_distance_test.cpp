@@ -28,5 +28,18 @@ TEST(TrueSurfaceDistance, InwardAreaIsTheShareOfFacesAgainstTheTrueNormal) {
   EXPECT_DOUBLE_EQ(measure_true_surface_distance(test::unit_cube(true), surface).inward_area_fraction, 1.0);
 }
 
+//! Every corner of the unit box lies sqrt(0.54) from the capsule's segment:
+//! outside a thin capsule (positive), inside a fat one (negative).
+TEST(TrueSurfaceDistance, SignedMeanIsNegativeInsideAndPositiveOutside) {
+  for (double radius : {0.3, 1.0}) {
+    TubeSurface surface;
+    surface.add(Capsule{Eigen::Vector3d(0.5, 0.5, 0.2), Eigen::Vector3d(0.5, 0.5, 0.8), radius});
+    TrueSurfaceDistance d = measure_true_surface_distance(test::unit_cube(), surface);
+    double expected = (std::sqrt(0.54) - radius) / radius;
+    EXPECT_NEAR(d.signed_relative_mean, expected, 1e-9) << radius;
+    EXPECT_NEAR(d.relative.mean, std::abs(expected), 1e-9) << radius;
+  }
+}
+
 }  // namespace
 }  // namespace mcquad
