@@ -312,13 +312,16 @@ MCQ_FN float mcq_offset(const MCQ_GLOBAL float* positions, const MCQ_GLOBAL floa
 /* The mesh's shape operator at a vertex of normal n, as a symmetric 3x3
  * matrix K in space (zero along n), so that x.K.x / |x|^2 is the normal
  * curvature along a tangent direction x (positive where convex). Fitted by
- * least squares to the normal curvatures 2 (q - p).n / |p - q|^2 toward
- * the vertex's edge neighbours and diagonal corners p (which, unlike the
- * edges of a regular vertex, span the twist term too). Each direction's
- * curvature is capped at that of a sphere of 2.5 edges' radius: a round
- * tube or cap is 16 edges round at the default resolution, and a junction
- * block's sharper corner is not the surface's. Robust mode's curvature
- * correction uses it (docs/DESIGN.md). */
+ * least squares to the heights along n of the vertex's edge neighbours and
+ * diagonal corners (which, unlike the edges of a regular vertex, span the
+ * twist term too): h = h0 - (a u^2 + 2 b u v + c v^2) / 2 in mcq_cone_frame,
+ * each weighted by 1 / t^4 (t: its tangential distance) so that each counts
+ * alike in curvature. The height h0 is free: the vertex's own place does not
+ * enter, or a vertex standing out of its ring would see its ring as convex
+ * and be pushed further out. Each direction's curvature is capped at that of
+ * a sphere of 2.5 edges' radius: a round tube or cap is 16 edges round at the
+ * default resolution, and a junction block's sharper corner is not the
+ * surface's. Robust mode's curvature correction uses it (docs/DESIGN.md). */
 MCQ_FN mcq_shape_operator mcq_vertex_shape_operator(const MCQ_GLOBAL float* positions, const MCQ_GLOBAL mcq_uint* faces,
                                                     const MCQ_GLOBAL mcq_uint* vertex_face_offsets,
                                                     const MCQ_GLOBAL mcq_uint* vertex_faces, mcq_uint vertex,
@@ -326,30 +329,42 @@ MCQ_FN mcq_shape_operator mcq_vertex_shape_operator(const MCQ_GLOBAL float* posi
   mcq_shape_operator k = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
   mcq_vec3 u_axis, v_axis;
   mcq_cone_frame(n, &u_axis, &v_axis);
-  /* Normal equations of kappa = a u^2 + 2 b u v + c v^2 over the directions. */
-  float m00 = 0.0f, m01 = 0.0f, m02 = 0.0f, m11 = 0.0f, m12 = 0.0f, m22 = 0.0f;
-  float r0 = 0.0f, r1 = 0.0f, r2 = 0.0f, lengths = 0.0f, edges = 0.0f;
+  /* Weighted sums for the normal equations of h = h0 + f.(a, b, c) with
+   * f = -(u^2 / 2, u v, v^2 / 2); h0 is eliminated by centring on the
+   * weighted means. */
+  float sw = 0.0f, sf0 = 0.0f, sf1 = 0.0f, sf2 = 0.0f, sh = 0.0f;
+  float s00 = 0.0f, s01 = 0.0f, s02 = 0.0f, s11 = 0.0f, s12 = 0.0f, s22 = 0.0f, s0h = 0.0f, s1h = 0.0f, s2h = 0.0f;
+  float lengths = 0.0f, edges = 0.0f;
   for (mcq_uint f = vertex_face_offsets[vertex]; f < vertex_face_offsets[vertex + 1]; ++f) {
     mcq_uint face = vertex_faces[f];
     for (mcq_uint c = 0; c < 4u; ++c) {
       if (faces[4 * face + c] != vertex) continue;
       for (mcq_uint step = 1u; step <= 3u; ++step) {
         mcq_vec3 e = mcq_sub(mcq_load3(positions, faces[4 * face + (c + step) % 4u]), q);
-        float length2 = mcq_dot(e, e), u = mcq_dot(e, u_axis), v = mcq_dot(e, v_axis), t2 = u * u + v * v;
-        if (length2 <= 0.0f || t2 <= 0.0f) continue;
+        float u = mcq_dot(e, u_axis), v = mcq_dot(e, v_axis), t2 = u * u + v * v;
+        if (!(t2 > 0.0f)) continue;
         if (step != 2u) {
-          lengths += MCQ_SQRT(length2);
+          lengths += MCQ_SQRT(mcq_dot(e, e));
           edges += 1.0f;
         }
-        float kappa = -2.0f * mcq_dot(e, n) / length2;
-        float w0 = u * u / t2, w1 = 2.0f * u * v / t2, w2 = v * v / t2;
-        m00 += w0 * w0, m01 += w0 * w1, m02 += w0 * w2, m11 += w1 * w1, m12 += w1 * w2, m22 += w2 * w2;
-        r0 += w0 * kappa, r1 += w1 * kappa, r2 += w2 * kappa;
+        float w = 1.0f / (t2 * t2), h = mcq_dot(e, n);
+        float f0 = -0.5f * u * u, f1 = -u * v, f2 = -0.5f * v * v;
+        sw += w, sf0 += w * f0, sf1 += w * f1, sf2 += w * f2, sh += w * h;
+        s00 += w * f0 * f0, s01 += w * f0 * f1, s02 += w * f0 * f2, s11 += w * f1 * f1, s12 += w * f1 * f2;
+        s22 += w * f2 * f2, s0h += w * f0 * h, s1h += w * f1 * h, s2h += w * f2 * h;
       }
     }
   }
+  if (edges == 0.0f) return k;
+  /* Centred (covariance) form: m = S_ff - S_f S_f' / S_w, r = S_fh - S_f S_h / S_w. */
+  float m00 = s00 - sf0 * sf0 / sw, m01 = s01 - sf0 * sf1 / sw, m02 = s02 - sf0 * sf2 / sw;
+  float m11 = s11 - sf1 * sf1 / sw, m12 = s12 - sf1 * sf2 / sw, m22 = s22 - sf2 * sf2 / sw;
+  float r0 = s0h - sf0 * sh / sw, r1 = s1h - sf1 * sh / sw, r2 = s2h - sf2 * sh / sw;
   float det = m00 * (m11 * m22 - m12 * m12) - m01 * (m01 * m22 - m12 * m02) + m02 * (m01 * m12 - m11 * m02);
-  if (edges == 0.0f || !(MCQ_FABS(det) > 1e-6f)) return k;
+  /* Each term of m is dimensionless; a ring that spans too few directions
+   * for the three terms leaves m singular. */
+  float trace = m00 + m11 + m22;
+  if (!(MCQ_FABS(det) > 1e-6f * trace * trace * trace)) return k;
   float a = (r0 * (m11 * m22 - m12 * m12) - m01 * (r1 * m22 - m12 * r2) + m02 * (r1 * m12 - m11 * r2)) / det;
   float b = (m00 * (r1 * m22 - m12 * r2) - r0 * (m01 * m22 - m12 * m02) + m02 * (m01 * r2 - r1 * m02)) / det;
   float c = (m00 * (m11 * r2 - r1 * m12) - m01 * (m01 * r2 - r1 * m02) + r0 * (m01 * m12 - m11 * m02)) / det;

@@ -71,6 +71,19 @@ TEST(ShapeOperator, CylinderIsCurvedAroundAndStraightAlong) {
   }
 }
 
+//! A vertex standing out of its ring (a bump) must not see the ring as more
+//! convex, or the correction would push it further out.
+TEST(ShapeOperator, TheVertexsOwnHeightDoesNotEnter) {
+  const double radius = 2.0;
+  QuadTube tube(32, 4, radius, 0.4, false);
+  mcq_vec3 outward = vec(1, 0, 0);
+  auto before = tube.shape_at(0, 2, outward);
+  tube.positions[3 * tube.index(0, 2)] += 0.1f;  // out along its normal
+  auto after = tube.shape_at(0, 2, outward);
+  for (mcq_vec3 x : {vec(0, 1, 0), vec(0, 0, 1), vec(0, std::sqrt(0.5), std::sqrt(0.5))})
+    EXPECT_NEAR(quadratic(after, x), quadratic(before, x), 1e-4);
+}
+
 TEST(ShapeOperator, ConcaveSideIsNegativeAndNotCapped) {
   const double radius = 2.0;
   QuadTube tube(32, 4, radius, 0.4, true);
