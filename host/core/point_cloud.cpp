@@ -6,20 +6,10 @@
 #include <numeric>
 
 #include "core/errors.h"
+#include "core/morton.h"
 
 namespace mcquad {
 namespace {
-
-//! Spreads the low 21 bits of v to every third bit.
-uint64_t spread_bits(uint64_t v) {
-  v &= 0x1fffff;
-  v = (v | v << 32) & 0x1f00000000ffffULL;
-  v = (v | v << 16) & 0x1f0000ff0000ffULL;
-  v = (v | v << 8) & 0x100f00f00f00f00fULL;
-  v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-  v = (v | v << 2) & 0x1249249249249249ULL;
-  return v;
-}
 
 //! Sorts the points of one bucket (places [first, last)) by their Morton
 //! codes, ties in their present order, through the scratch arrays.
@@ -59,10 +49,7 @@ void sort_spatially(PointCloud& cloud) {
   const std::pair<Eigen::Vector3f, Eigen::Vector3f> box = bounding_box(cloud);
   const Eigen::Vector3f lo = box.first, hi = box.second;
   Eigen::Vector3f scale = (hi - lo).cwiseMax(1e-30f).cwiseInverse() * float((1 << kAxisBits) - 1);
-  auto morton_of = [&](const Eigen::Vector3f& p) {
-    Eigen::Vector3f c = (p - lo).cwiseProduct(scale);
-    return spread_bits(uint64_t(c.x())) | spread_bits(uint64_t(c.y())) << 1 | spread_bits(uint64_t(c.z())) << 2;
-  };
+  auto morton_of = [&](const Eigen::Vector3f& p) { return morton_code((p - lo).cwiseProduct(scale)); };
   auto low_code_of = [&](const Eigen::Vector3f& p) { return morton_of(p) & ((uint64_t(1) << kLowBits) - 1); };
   const size_t n = cloud.size();
   std::vector<uint16_t> bucket(n);

@@ -3,19 +3,10 @@
 #include <algorithm>
 #include <limits>
 
+#include "core/morton.h"
+
 namespace mcquad {
 namespace {
-
-//! The bits of a 21-bit integer spread to every third bit.
-uint64_t spread_bits(uint64_t x) {
-  x &= 0x1fffff;
-  x = (x | x << 32) & 0x1f00000000ffffull;
-  x = (x | x << 16) & 0x1f0000ff0000ffull;
-  x = (x | x << 8) & 0x100f00f00f00f00full;
-  x = (x | x << 4) & 0x10c30c30c30c30c3ull;
-  x = (x | x << 2) & 0x1249249249249249ull;
-  return x;
-}
 
 //! 21-bit-per-axis Morton codes of the points in their box.
 std::vector<uint64_t> morton_codes(const std::vector<Eigen::Vector3f>& points) {
@@ -25,9 +16,7 @@ std::vector<uint64_t> morton_codes(const std::vector<Eigen::Vector3f>& points) {
   std::vector<uint64_t> codes(points.size());
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < long(points.size()); ++i) {
-    Eigen::Vector3f c = (points[size_t(i)] - box.min()).cwiseProduct(scale).cwiseMax(0.0f);
-    codes[size_t(i)] =
-        spread_bits(uint64_t(c.x())) | spread_bits(uint64_t(c.y())) << 1 | spread_bits(uint64_t(c.z())) << 2;
+    codes[size_t(i)] = morton_code((points[size_t(i)] - box.min()).cwiseProduct(scale).cwiseMax(0.0f));
   }
   return codes;
 }
