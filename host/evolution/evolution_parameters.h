@@ -57,8 +57,9 @@ struct EvolutionParameters {
   //! normals, or normals that disagree, stay visible).
   double min_facing = 0.7;
   //! Robust mode: each sample's projection onto a ray is corrected by the
-  //! mesh's mean curvature at the vertex, so that vertices settle on a curved
-  //! surface rather than inside it by the cells' sagitta (docs/DESIGN.md).
+  //! mesh's shape operator at the vertex (mcq_vertex_shape_operator), so that
+  //! vertices settle on a curved surface rather than inside it by the cells'
+  //! sagitta (docs/DESIGN.md, "Curvature correction").
   bool curvature_correction = true;
 };
 

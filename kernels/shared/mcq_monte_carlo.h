@@ -160,7 +160,9 @@ MCQ_FN float mcq_cell_distance(const MCQ_GLOBAL mcq_uint* cell_offsets, const MC
        * beyond a point x off the ray (x: its offset from the ray's line),
        * while x stays well within the radius of curvature; the correction
        * stops growing at a normal curvature of 0.3 / |x|, where that model
-       * no longer holds. */
+       * no longer holds. Concave directions get none: correcting them too
+       * sank the junctions' creases (docs/DESIGN.md). With `shape` zero
+       * (the correction off) this is the plain projection. */
       mcq_vec3 off_ray = mcq_sub(offset, mcq_scale(dir, projection));
       float length = MCQ_SQRT(mcq_dot(off_ray, off_ray));
       projection += 0.5f * MCQ_FMIN(MCQ_FMAX(mcq_shape_quadratic(shape, off_ray), 0.0f), 0.3f * length);
@@ -196,7 +198,9 @@ MCQ_FN float mcq_band_distance(const MCQ_GLOBAL mcq_uint* cell_offsets, const MC
 /* The paper's displacement of one vertex along its normal: the mean of the
  * feasible minimal projections (|d| < epsilon) over all rays, 0 with none.
  * *feasible receives how many rays were feasible. Robust mode's regions
- * limit the cells the rays see and scale epsilon and the reach. */
+ * limit the cells the rays see and scale epsilon and the reach; `shape` is
+ * the mesh's shape operator at the vertex for the curvature correction
+ * (zero without it). */
 MCQ_FN float mcq_vertex_displacement(mcq_cells cells, mcq_regions regions, mcq_vec3 q, mcq_vec3 n,
                                      mcq_shape_operator shape, mcq_uint vertex, mcq_step_params params,
                                      mcq_uint* feasible) {
