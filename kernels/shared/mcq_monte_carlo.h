@@ -254,6 +254,16 @@ MCQ_FN float mcq_vertex_displacement(mcq_cells cells, mcq_regions regions, mcq_v
   return *feasible > 0u ? sum / (float)(*feasible) : 0.0f;
 }
 
+/* The corner (0 to 3) at which `vertex` sits in quad `face`; 4 when it is
+ * not one of its corners. The corners before and after it, (c + 1) % 4 and
+ * (c + 3) % 4, are the vertex's edge neighbours; (c + 2) % 4 is its
+ * diagonal corner. */
+MCQ_FN mcq_uint mcq_corner_of(const MCQ_GLOBAL mcq_uint* faces, mcq_uint face, mcq_uint vertex) {
+  mcq_uint c = 0;
+  while (c < 4u && faces[4 * face + c] != vertex) ++c;
+  return c;
+}
+
 /* Area-weighted average unit normal of a vertex: the sum of its quads' vector
  * areas (half the cross product of the diagonals, exact for planar quads and
  * well defined for bent ones), normalized. Zero when degenerate. */
@@ -340,23 +350,21 @@ MCQ_FN mcq_shape_operator mcq_vertex_shape_operator(const MCQ_GLOBAL float* posi
   float s00 = 0.0f, s01 = 0.0f, s02 = 0.0f, s11 = 0.0f, s12 = 0.0f, s22 = 0.0f, s0h = 0.0f, s1h = 0.0f, s2h = 0.0f;
   float lengths = 0.0f, edges = 0.0f;
   for (mcq_uint f = vertex_face_offsets[vertex]; f < vertex_face_offsets[vertex + 1]; ++f) {
-    mcq_uint face = vertex_faces[f];
-    for (mcq_uint c = 0; c < 4u; ++c) {
-      if (faces[4 * face + c] != vertex) continue;
-      for (mcq_uint step = 1u; step <= 3u; ++step) {
-        mcq_vec3 e = mcq_sub(mcq_load3(positions, faces[4 * face + (c + step) % 4u]), q);
-        float u = mcq_dot(e, u_axis), v = mcq_dot(e, v_axis), t2 = u * u + v * v;
-        if (!(t2 > 0.0f)) continue;
-        if (step != 2u) {
-          lengths += MCQ_SQRT(mcq_dot(e, e));
-          edges += 1.0f;
-        }
-        float w = 1.0f / (t2 * t2), h = mcq_dot(e, n);
-        float f0 = -0.5f * u * u, f1 = -u * v, f2 = -0.5f * v * v;
-        sw += w, sf0 += w * f0, sf1 += w * f1, sf2 += w * f2, sh += w * h;
-        s00 += w * f0 * f0, s01 += w * f0 * f1, s02 += w * f0 * f2, s11 += w * f1 * f1, s12 += w * f1 * f2;
-        s22 += w * f2 * f2, s0h += w * f0 * h, s1h += w * f1 * h, s2h += w * f2 * h;
+    mcq_uint face = vertex_faces[f], c = mcq_corner_of(faces, face, vertex);
+    if (c == 4u) continue;
+    for (mcq_uint step = 1u; step <= 3u; ++step) {
+      mcq_vec3 e = mcq_sub(mcq_load3(positions, faces[4 * face + (c + step) % 4u]), q);
+      float u = mcq_dot(e, u_axis), v = mcq_dot(e, v_axis), t2 = u * u + v * v;
+      if (!(t2 > 0.0f)) continue;
+      if (step != 2u) {
+        lengths += MCQ_SQRT(mcq_dot(e, e));
+        edges += 1.0f;
       }
+      float w = 1.0f / (t2 * t2), h = mcq_dot(e, n);
+      float f0 = -0.5f * u * u, f1 = -u * v, f2 = -0.5f * v * v;
+      sw += w, sf0 += w * f0, sf1 += w * f1, sf2 += w * f2, sh += w * h;
+      s00 += w * f0 * f0, s01 += w * f0 * f1, s02 += w * f0 * f2, s11 += w * f1 * f1, s12 += w * f1 * f2;
+      s22 += w * f2 * f2, s0h += w * f0 * h, s1h += w * f1 * h, s2h += w * f2 * h;
     }
   }
   if (edges == 0.0f) return k;
@@ -399,13 +407,11 @@ MCQ_FN mcq_vec3 mcq_hole_position(const MCQ_GLOBAL float* positions, const MCQ_G
                                   const MCQ_GLOBAL mcq_uint* vertex_faces, mcq_uint vertex) {
   float sum = 0.0f, count = 0.0f;
   for (mcq_uint k = vertex_face_offsets[vertex]; k < vertex_face_offsets[vertex + 1]; ++k) {
-    mcq_uint f = vertex_faces[k];
-    for (mcq_uint c = 0; c < 4u; ++c) {
-      if (faces[4 * f + c] != vertex) continue;
-      sum += mcq_offset(positions, initial_positions, initial_normals, faces[4 * f + (c + 1u) % 4u]);
-      sum += mcq_offset(positions, initial_positions, initial_normals, faces[4 * f + (c + 3u) % 4u]);
-      count += 2.0f;
-    }
+    mcq_uint f = vertex_faces[k], c = mcq_corner_of(faces, f, vertex);
+    if (c == 4u) continue;
+    sum += mcq_offset(positions, initial_positions, initial_normals, faces[4 * f + (c + 1u) % 4u]);
+    sum += mcq_offset(positions, initial_positions, initial_normals, faces[4 * f + (c + 3u) % 4u]);
+    count += 2.0f;
   }
   if (count == 0.0f) return mcq_load3(positions, vertex);
   return mcq_add(mcq_load3(initial_positions, vertex), mcq_scale(mcq_load3(initial_normals, vertex), sum / count));
@@ -451,13 +457,11 @@ MCQ_FN mcq_vec3 mcq_relaxed_position(const MCQ_GLOBAL float* positions, const MC
   mcq_vec3 sum = mcq_make_vec3(0.0f, 0.0f, 0.0f);
   float count = 0.0f;
   for (mcq_uint k = vertex_face_offsets[vertex]; k < vertex_face_offsets[vertex + 1]; ++k) {
-    mcq_uint f = vertex_faces[k];
-    for (mcq_uint c = 0; c < 4u; ++c) {
-      if (faces[4 * f + c] != vertex) continue;
-      sum = mcq_add(sum, mcq_load3(positions, faces[4 * f + (c + 1u) % 4u]));
-      sum = mcq_add(sum, mcq_load3(positions, faces[4 * f + (c + 3u) % 4u]));
-      count += 2.0f;
-    }
+    mcq_uint f = vertex_faces[k], c = mcq_corner_of(faces, f, vertex);
+    if (c == 4u) continue;
+    sum = mcq_add(sum, mcq_load3(positions, faces[4 * f + (c + 1u) % 4u]));
+    sum = mcq_add(sum, mcq_load3(positions, faces[4 * f + (c + 3u) % 4u]));
+    count += 2.0f;
   }
   if (count == 0.0f) return q;
   mcq_vec3 n = mcq_load3(normals, vertex);
