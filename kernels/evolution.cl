@@ -16,7 +16,7 @@ __kernel void evolve_vertices(
   uint v = get_global_id(0);
   if (v >= vertex_count) return;
   mcq_topology mesh = {faces, vertex_face_offsets, vertex_faces, boundary};
-  mcq_cells cells = {node_bounds, node_children, cell_offsets, points, 0, 0, cell_facing}; /* no planes */
+  mcq_cells cells = {node_bounds, node_children, cell_offsets, points, 0, 0, cell_facing, 0.0f}; /* no planes */
   mcq_regions regions = {cell_bones, vertex_bones, vertex_scale, visible_offsets, visible_bones};
   uint feasible;
   mcq_store3(new_positions, v,
@@ -45,10 +45,11 @@ __kernel void update_normals(__global const float* positions, __global const uin
 __kernel void vertex_errors(__global const float* positions, __global const float* node_bounds,
                             __global const int* node_children, __global const uint* cell_offsets,
                             __global const float* points, __global const float* cell_centroids,
-                            __global const float* cell_normals, __global float* errors, const uint vertex_count) {
+                            __global const float* cell_normals, const float bounds_inset, __global float* errors,
+                            const uint vertex_count) {
   uint v = get_global_id(0);
   if (v >= vertex_count) return;
-  mcq_cells cells = {node_bounds, node_children, cell_offsets, points, cell_centroids, cell_normals, 0};
+  mcq_cells cells = {node_bounds, node_children, cell_offsets, points, cell_centroids, cell_normals, 0, bounds_inset};
   errors[v] = mcq_vertex_error(cells, mcq_load3(positions, v));
 }
 

@@ -284,6 +284,20 @@ size_t CellTree::byte_size() const {
          cell_facing.size() * 4 + node_bounds.size() * 4 + node_children.size() * 4;
 }
 
+namespace {
+
+//! The padding less four units in the last place of the largest bound: a
+//! padded bound b - p, shrunk again by the inset (both rounded to floats),
+//! stays outside the tight bound b.
+float bounds_inset(const std::vector<float>& node_bounds, float padding) {
+  float largest = 0;
+  for (float b : node_bounds) largest = std::max(largest, std::fabs(b));
+  float ulp = std::nextafter(largest, std::numeric_limits<float>::infinity()) - largest;
+  return std::max(0.0f, padding - 4 * ulp);
+}
+
+}  // namespace
+
 CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size, bool pad_boxes) {
   if (cloud.empty()) throw InputError("cannot build cells: the point cloud is empty");
   if (cloud.size() >= size_t(UINT32_MAX)) throw UnsupportedError("clouds of 2^32 points or more are not supported");
@@ -326,6 +340,7 @@ CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size, bool pad_box
       cells.node_bounds[6 * node + 3 + size_t(k)] += padding;
     }
   }
+  cells.bounds_inset = bounds_inset(cells.node_bounds, padding);
   return cells;
 }
 

@@ -24,6 +24,10 @@ struct CellTree {
   std::vector<int32_t> node_children;  //!< 2 per node; a leaf stores -1 - cell, -1
   int depth = 0;                       //!< longest root-to-leaf path, in edges
   double point_spacing = 0;            //!< the cloud's median nearest-neighbour distance (sampled)
+  //! How far inside every node's box its points lie at least: the padding
+  //! less a margin for the padding's rounding. The nearest-point search
+  //! prunes on the boxes shrunk by it.
+  float bounds_inset = 0;
 
   size_t cell_count() const { return cell_offsets.empty() ? 0 : cell_offsets.size() - 1; }
   size_t node_count() const { return node_children.size() / 2; }
@@ -35,7 +39,7 @@ struct CellTree {
 //! which must outlive the view.
 inline device::mcq_cells cells_view(const CellTree& cells) {
   return {cells.node_bounds.data(),    cells.node_children.data(), cells.cell_offsets.data(), cells.points.data(),
-          cells.cell_centroids.data(), cells.cell_normals.data(),  cells.cell_facing.data()};
+          cells.cell_centroids.data(), cells.cell_normals.data(),  cells.cell_facing.data(),  cells.bounds_inset};
 }
 
 //! The paper's error level e-bar: the mean over the vertices (`positions`,

@@ -50,6 +50,7 @@ void OpenCLBackend::load(const CellTree& cells, const MeshArrays& mesh, const Sk
   try {
     vertex_count_ = uint32_t(mesh.vertex_count());
     node_bounds_ = upload(cells.node_bounds);
+    bounds_inset_ = cells.bounds_inset;
     node_children_ = upload(cells.node_children);
     cell_offsets_ = upload(cells.cell_offsets);
     points_ = upload(cells.points);
@@ -117,7 +118,7 @@ void OpenCLBackend::step(const device::mcq_step_params& params) {
 double OpenCLBackend::error_level() {
   try {
     set_kernel_args(errors_kernel_, positions_, node_bounds_, node_children_, cell_offsets_, points_, cell_centroids_,
-                    cell_normals_, errors_, vertex_count_);
+                    cell_normals_, bounds_inset_, errors_, vertex_count_);
     queue_.enqueueNDRangeKernel(errors_kernel_, cl::NullRange, global_range(vertex_count_, kGroupSize),
                                 cl::NDRange(kGroupSize));
     set_kernel_args(reduce_kernel_, errors_, partial_sums_, cl::Local(reduce_group_size_ * sizeof(float)),

@@ -45,6 +45,7 @@ class OpenCLBackend : public EvolutionBackend {
   Floats initial_positions_, initial_normals_;  //!< where the evolution started, for hole filling
   Indices cell_bones_, vertex_bones_, visible_offsets_, visible_bones_;  //!< skeleton regions
   Floats vertex_scale_;
+  float bounds_inset_ = 0;  //!< CellTree::bounds_inset
   uint32_t vertex_count_ = 0;
   size_t reduce_groups_ = 0, reduce_group_size_ = 0;
 };

@@ -371,24 +371,28 @@ MCQ_FN void mcq_first_cell_hits(const MCQ_GLOBAL float* node_bounds, const MCQ_G
   if (candidates) *candidates = found;
 }
 
-MCQ_FN float mcq_box_distance_squared(const MCQ_GLOBAL float* node_bounds, int node, mcq_vec3 q) {
+/* The squared distance from q to node's box shrunk by `inset` on every side. */
+MCQ_FN float mcq_inset_box_distance_squared(const MCQ_GLOBAL float* node_bounds, int node, float inset, mcq_vec3 q) {
   const MCQ_GLOBAL float* b = node_bounds + 6 * node;
-  float dx = MCQ_FMAX(MCQ_FMAX(b[0] - q.x, q.x - b[3]), 0.0f);
-  float dy = MCQ_FMAX(MCQ_FMAX(b[1] - q.y, q.y - b[4]), 0.0f);
-  float dz = MCQ_FMAX(MCQ_FMAX(b[2] - q.z, q.z - b[5]), 0.0f);
+  float dx = MCQ_FMAX(MCQ_FMAX(b[0] + inset - q.x, q.x - (b[3] - inset)), 0.0f);
+  float dy = MCQ_FMAX(MCQ_FMAX(b[1] + inset - q.y, q.y - (b[4] - inset)), 0.0f);
+  float dz = MCQ_FMAX(MCQ_FMAX(b[2] + inset - q.z, q.z - (b[5] - inset)), 0.0f);
   return dx * dx + dy * dy + dz * dz;
 }
 
 /* The cell holding the cloud point nearest to q (ties to the lower point
- * index, i.e. the lower cell); the squared distance goes to *distance2. */
+ * index, i.e. the lower cell); the squared distance goes to *distance2.
+ * `inset`: how far inside every box its points lie at least (the rays'
+ * padding, 0 for tight boxes); the search prunes on the boxes shrunk by it,
+ * which on the knot visits a third of the leaves the padded boxes do. */
 MCQ_FN int mcq_nearest_point_cell(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
-                                  const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points, mcq_vec3 q,
-                                  float* distance2) {
+                                  const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points, float inset,
+                                  mcq_vec3 q, float* distance2) {
   int stack_node[MCQ_STACK_SIZE];
   float stack_d[MCQ_STACK_SIZE];
   int top = 1;
   stack_node[0] = 0;
-  stack_d[0] = mcq_box_distance_squared(node_bounds, 0, q);
+  stack_d[0] = mcq_inset_box_distance_squared(node_bounds, 0, inset, q);
   float best_d = MCQ_INFINITY;
   mcq_uint best_point = 0xFFFFFFFFu;
   int best_cell = -1;
@@ -411,8 +415,8 @@ MCQ_FN int mcq_nearest_point_cell(const MCQ_GLOBAL float* node_bounds, const MCQ
       continue;
     }
     int right = node_children[2 * node + 1];
-    float dl = mcq_box_distance_squared(node_bounds, left, q);
-    float dr = mcq_box_distance_squared(node_bounds, right, q);
+    float dl = mcq_inset_box_distance_squared(node_bounds, left, inset, q);
+    float dr = mcq_inset_box_distance_squared(node_bounds, right, inset, q);
     int near_node = dl <= dr ? left : right, far_node = dl <= dr ? right : left;
     float near_d = MCQ_FMIN(dl, dr), far_d = MCQ_FMAX(dl, dr);
     if (far_d <= best_d && top < MCQ_STACK_SIZE) {

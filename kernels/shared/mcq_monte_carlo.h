@@ -45,6 +45,9 @@ typedef struct {
   const MCQ_GLOBAL float* cell_centroids;
   const MCQ_GLOBAL float* cell_normals;
   const MCQ_GLOBAL float* cell_facing;
+  /* How far inside every node's box its points lie at least: the boxes'
+   * padding less a rounding margin (CellTree::bounds_inset). */
+  float bounds_inset;
 } mcq_cells;
 
 /* The quad mesh's connectivity, as laid out by host/mesh/mesh_arrays.h
@@ -474,7 +477,8 @@ MCQ_FN mcq_vec3 mcq_relaxed_position(const MCQ_GLOBAL float* positions, const MC
  * holding q's nearest cloud point. */
 MCQ_FN float mcq_vertex_error(mcq_cells cells, mcq_vec3 q) {
   float d2;
-  int cell = mcq_nearest_point_cell(cells.node_bounds, cells.node_children, cells.cell_offsets, cells.points, q, &d2);
+  int cell = mcq_nearest_point_cell(cells.node_bounds, cells.node_children, cells.cell_offsets, cells.points,
+                                    cells.bounds_inset, q, &d2);
   if (cell < 0) return 0.0f;
   mcq_vec3 g = mcq_load3(cells.cell_centroids, (mcq_uint)cell);
   mcq_vec3 t = mcq_load3(cells.cell_normals, (mcq_uint)cell);

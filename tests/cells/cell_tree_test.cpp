@@ -175,23 +175,45 @@ TEST(CellTree, PlaneNormalsOfPointsDrawnFromKnownPlanes) {
   }
 }
 
-TEST(CellTree, NearestPointCellMatchesBruteForce) {
-  PointCloud cloud = random_cloud(3000, 5);
+//! The nearest-point search prunes on the padded boxes shrunk by
+//! bounds_inset; it must still find the brute-force answer (the lowest index
+//! among equally near points), near the surface where the padding matters and
+//! far from the origin where the padding's rounding does.
+class NearestPointCell : public ::testing::TestWithParam<float> {};
+
+TEST_P(NearestPointCell, MatchesBruteForce) {
+  const Eigen::Vector3f offset = Eigen::Vector3f::Constant(GetParam());
+  PointCloud cloud = awkward_cloud(3000, 5);
+  for (auto& p : cloud.points) p += offset;
   CellTree cells = build_cell_tree(cloud, 12);
+  ASSERT_GT(cells.bounds_inset, 0.0f);
+  ASSERT_LT(cells.bounds_inset, float(cells.point_spacing));
   std::mt19937 random(7);
-  std::uniform_real_distribution<float> u(-1.5, 1.5);
-  for (int q = 0; q < 300; ++q) {
-    Eigen::Vector3f query(u(random), u(random), u(random));
+  std::uniform_real_distribution<float> u(-1.5, 1.5), near(-0.02f, 0.02f);
+  std::uniform_int_distribution<size_t> pick(0, cells.point_count() - 1);
+  for (int q = 0; q < 600; ++q) {
+    Eigen::Vector3f query = q % 2 ? offset + Eigen::Vector3f(u(random), u(random), u(random))
+                                  : Eigen::Vector3f(&cells.points[3 * pick(random)]) +
+                                        Eigen::Vector3f(near(random), near(random), near(random));
     float best = INFINITY;
-    for (size_t p = 0; p < cells.point_count(); ++p)
-      best = std::min(best, (Eigen::Vector3f(&cells.points[3 * p]) - query).squaredNorm());
+    size_t best_point = 0;
+    for (size_t p = 0; p < cells.point_count(); ++p) {
+      float d2 = device::mcq_dot(device::mcq_sub(device::mcq_load3(cells.points.data(), uint32_t(p)), vec(query)),
+                                 device::mcq_sub(device::mcq_load3(cells.points.data(), uint32_t(p)), vec(query)));
+      if (d2 < best) best = d2, best_point = p;
+    }
     float d2;
-    int cell = device::mcq_nearest_point_cell(cells.node_bounds.data(), cells.node_children.data(),
-                                              cells.cell_offsets.data(), cells.points.data(), vec(query), &d2);
+    int cell =
+        device::mcq_nearest_point_cell(cells.node_bounds.data(), cells.node_children.data(), cells.cell_offsets.data(),
+                                       cells.points.data(), cells.bounds_inset, vec(query), &d2);
     ASSERT_GE(cell, 0);
-    EXPECT_FLOAT_EQ(d2, best);
+    EXPECT_EQ(d2, best);
+    EXPECT_LE(cells.cell_offsets[size_t(cell)], best_point);
+    EXPECT_GT(cells.cell_offsets[size_t(cell) + 1], best_point);
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Offsets, NearestPointCell, ::testing::Values(0.0f, 3000.0f, -70000.0f));
 
 struct Hit {
   int cell = -1;
