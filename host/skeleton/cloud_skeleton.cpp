@@ -42,6 +42,9 @@ constexpr double kShortLimbProtrusion = 3.0;
 // A cycle of the level-set graph spanning less geodesic distance than this
 // many tube radii needs more evidence that it is a handle (is_a_handle).
 constexpr double kCycleRadii = 2.0;
+// A ring wider than this many times its limb's median ring is a band that
+// still spans a neighbouring limb, no part of this limb's axis.
+constexpr double kWidestRing = 1.25;
 // Pieces whose widest angular gap exceeds this are arcs, not rings.
 constexpr double kArcGap = M_PI / 2;
 
@@ -103,6 +106,21 @@ double chain_length(const Extraction& x, const std::vector<int>& nodes) {
 }
 
 double median(std::vector<double> values) { return quantile_of(std::move(values), 0.5); }
+
+//! The median radius of a chain's rings (arcs left out, and the rings of a
+//! cap: those within their radius of an end's tip); infinite when it has
+//! none, so that no ring is wider than a multiple of it.
+double median_ring_radius(const Extraction& x, const std::vector<int>& nodes) {
+  const bool to_an_end = x.work.degree(nodes.back()) == 1;
+  const Eigen::Vector3d& tip = x.position[size_t(nodes.back())];
+  std::vector<double> radii;
+  for (int v : nodes) {
+    if (!is_ring(x.node(v))) continue;
+    if (to_an_end && (x.position[size_t(v)] - tip).norm() < x.node(v).radius) continue;
+    radii.push_back(x.node(v).radius);
+  }
+  return radii.empty() ? INFINITY : median(radii);
+}
 
 //! Whether a cycle of the level-set graph is a handle, judged by its pieces
 //! between the split and the merge. A handle's two branches are tubes of
@@ -420,9 +438,10 @@ struct Line {
 //! of a parabola through the ring centres up to `far` (a line through fewer
 //! than four), arcs left out. The tangent rather than a mean line, so that a
 //! limb curving away from its junction does not throw the junction off.
-//! None when fewer than two rings qualify.
+//! Rings wider than `widest` are left out too. None when fewer than two
+//! rings qualify.
 bool fit_axis(const Extraction& x, const std::vector<int>& nodes, const Eigen::Vector3d& from, double near, double far,
-              Line& line) {
+              Line& line, double widest = INFINITY) {
   std::vector<Eigen::Vector3d> points;
   std::vector<double> along;
   double walked = 0;
@@ -435,7 +454,7 @@ bool fit_axis(const Extraction& x, const std::vector<int>& nodes, const Eigen::V
     const Eigen::Vector3d& p = x.position[size_t(nodes[k])];
     double distance = (p - from).norm();
     if (distance > far) break;
-    if (distance < near || !is_ring(x.node(nodes[k]))) continue;
+    if (distance < near || !is_ring(x.node(nodes[k])) || x.node(nodes[k]).radius > widest) continue;
     if (to_an_end && (p - tip).norm() < x.node(nodes[k]).radius) continue;
     if (!points.empty()) walked += (p - points.back()).norm();
     points.push_back(p);
@@ -516,30 +535,51 @@ void place_junctions(Extraction& x, std::vector<Chain>& chains) {
   };
   // The axes of the limbs, each fitted from its own junction node. Limbs
   // shorter than two radii (links to a neighbouring junction node of the
-  // same region, mostly) have no axis worth the name.
-  auto limb_axes = [&](const std::vector<Limb>& limbs, double r) {
+  // same region, mostly) have no axis worth the name. Rings much wider than
+  // their limb (kWidestRing) are left out on request only (meeting_point);
+  // whether two junction nodes are one region is judged with them (left out
+  // there, the tail-loop's two junctions became one).
+  auto limb_axes = [&](const std::vector<Limb>& limbs, double r, bool leave_out_wide_rings = false) {
     std::vector<Line> lines;
     size_t long_limbs = 0;
     for (const auto& limb : limbs) long_limbs += chain_length(x, limb.nodes) >= 2 * r;
     for (const auto& limb : limbs) {
       if (long_limbs >= 2 && chain_length(x, limb.nodes) < 2 * r) continue;
       const Eigen::Vector3d& from = x.position[size_t(limb.nodes.front())];
+      const double widest = leave_out_wide_rings ? kWidestRing * median_ring_radius(x, limb.nodes) : INFINITY;
       Line line;
-      if (fit_axis(x, limb.nodes, from, r, 3 * r, line) || fit_axis(x, limb.nodes, from, 0.5 * r, 5 * r, line))
+      if (fit_axis(x, limb.nodes, from, r, 3 * r, line, widest) ||
+          fit_axis(x, limb.nodes, from, 0.5 * r, 5 * r, line, widest))
         lines.push_back(line);
     }
     return lines;
   };
   // Where the axes of a narrow fork meet can be several radii from where its
   // bands split; beyond four radii they are not axes. Where they meet
-  // outside the body (tangents of limbs that bend away from the hub, as a
-  // theta's arcs leave its poles), the junction is the deepest point between
-  // the band's centre and that meeting point.
-  auto meeting_point = [&](const std::vector<Line>& lines, const Eigen::Vector3d& start, double r) {
-    if (lines.size() < 2) return start;
+  // outside the body, bands still spanning two limbs of a narrow fork may
+  // have thrown an axis (the 30-degree Y's arm: its axis came out across the
+  // fork, the junction 3.5 radii up the wider arm): fitted again without the
+  // rings much wider than their limb, the axes may meet inside. (Always
+  // leaving those rings out moved the aorta's junction 1.3 radii up its
+  // trunk: its iliacs bend away from the hub.) Otherwise (tangents of limbs
+  // that bend away from the hub, as a theta's arcs leave its poles) the
+  // junction is the deepest point between the band's centre and where the
+  // axes meet.
+  auto meet_inside = [&](const std::vector<Line>& lines, const Eigen::Vector3d& start, double r) {
     Eigen::Vector3d meet = nearest_to_lines(lines, start);
+    return std::make_pair(meet, (meet - start).norm() < 4 * r && x.inscribed_radius(meet) >= 0.5 * r);
+  };
+  auto meeting_point = [&](const std::vector<Limb>& limbs, const Eigen::Vector3d& start, double r) {
+    std::vector<Line> lines = limb_axes(limbs, r);
+    if (lines.size() < 2) return start;
+    auto [meet, inside] = meet_inside(lines, start, r);
+    if (inside) return meet;
+    std::vector<Line> narrow = limb_axes(limbs, r, true);
+    if (narrow.size() >= 2) {
+      auto [again, inside_again] = meet_inside(narrow, start, r);
+      if (inside_again) return again;
+    }
     if ((meet - start).norm() >= 4 * r) return start;
-    if (x.inscribed_radius(meet) >= 0.5 * r) return meet;
     Eigen::Vector3d deepest = start;
     double depth = x.inscribed_radius(start);
     constexpr int kSteps = 16;
@@ -682,7 +722,7 @@ void place_junctions(Extraction& x, std::vector<Chain>& chains) {
           (members.size() > 1 || chains[c].closed()) && chain_length(x, chains[c].nodes) < 2 * r)
         internal.insert(c);
     std::vector<Limb> limbs = limbs_of(members, internal);
-    Eigen::Vector3d centre = meeting_point(limb_axes(limbs, r), start, r);
+    Eigen::Vector3d centre = meeting_point(limbs, start, r);
     // Every member becomes the leader; the leader moves to the centre.
     x.position[size_t(leader)] = centre;
     for (size_t c : internal) dropped.insert(c);
@@ -694,28 +734,30 @@ void place_junctions(Extraction& x, std::vector<Chain>& chains) {
     // their limb or within 1.5 r of its centre (the crotch bends them).
     for (const auto& limb : limbs) {
       std::vector<int>& nodes = chains[limb.chain].nodes;
+      const double limb_radius = median_ring_radius(x, limb.nodes);
+      const double widest = kWidestRing * limb_radius;
       Line axis;
-      bool has_axis =
-          fit_axis(x, limb.nodes, start, r, 3 * r, axis) || fit_axis(x, limb.nodes, start, 0.5 * r, 5 * r, axis);
+      bool has_axis = fit_axis(x, limb.nodes, start, r, 3 * r, axis, widest) ||
+                      fit_axis(x, limb.nodes, start, 0.5 * r, 5 * r, axis, widest);
       Eigen::Vector3d out = has_axis ? axis.direction : (x.position[size_t(limb.nodes.back())] - centre).normalized();
       size_t inner = 1;
       // Also, within 2.5 r of the centre, off the limb's own axis by more
       // than half its radius: a band still spanning this limb and its
       // neighbour, which have not parted yet (a fan's branches 30 degrees
       // apart: its hub node was 0.95 radii off).
-      std::vector<double> ring_radii;
-      for (int v : limb.nodes)
-        if (is_ring(x.node(v))) ring_radii.push_back(x.node(v).radius);
-      const double limb_radius = median(ring_radii);
       auto off_axis = [&](const Eigen::Vector3d& p) {
         if (!has_axis || limb_radius <= 0 || (p - centre).norm() > 2.5 * r) return false;
         Eigen::Vector3d d = p - axis.point;
         return (d - d.dot(axis.direction) * axis.direction).norm() > 0.5 * limb_radius;
       };
-      auto inside = [&](const Eigen::Vector3d& p) {
-        return (p - centre).dot(out) < 0.75 * r || (p - centre).norm() < 1.5 * r || off_axis(p);
+      // And rings much wider than the limb: bands spanning it and a
+      // neighbour (the rings fit_axis leaves out).
+      auto inside = [&](int v) {
+        const Eigen::Vector3d& p = x.position[size_t(v)];
+        return (p - centre).dot(out) < 0.75 * r || (p - centre).norm() < 1.5 * r || off_axis(p) ||
+               x.node(v).radius > widest;
       };
-      while (inner + 1 < limb.nodes.size() && inside(x.position[size_t(limb.nodes[inner])])) ++inner;
+      while (inner + 1 < limb.nodes.size() && inside(limb.nodes[inner])) ++inner;
       // limb.nodes[1 .. inner) are inside; erase them from the chain's matching
       // end (the other end may have been trimmed already), but at most half
       // of the inner rings beyond those the chain must keep.
