@@ -787,9 +787,17 @@ void place_end(Extraction& x, std::vector<int>& nodes) {  // nodes start at the 
     if (is_ring(x.node(nodes[k]))) radii.push_back(x.node(nodes[k]).radius);
   }
   double r = median(radii);
+  if (r <= 0) return;
   Line axis;
-  if (r <= 0 || !(fit_axis(x, nodes, tip_ring, r, 3 * r, axis) || fit_axis(x, nodes, tip_ring, 0.3 * r, 4 * r, axis)))
-    return;
+  // A limb that parts from its neighbour only near its tip (two arms of a
+  // star 18 degrees apart) has too few rings for an axis: the line from its
+  // other end to the tip's ring stands in (the ends had stayed at the caps'
+  // last rings, up to 1.6 radii past the capsules' ends).
+  if (!fit_axis(x, nodes, tip_ring, r, 3 * r, axis) && !fit_axis(x, nodes, tip_ring, 0.3 * r, 4 * r, axis)) {
+    Eigen::Vector3d inward = x.position[size_t(nodes.back())] - tip_ring;
+    if (nodes.size() < 2 || inward.norm() <= 0) return;
+    axis = {tip_ring, inward.normalized()};
+  }
   Eigen::Vector3d out = -axis.direction;
   // The tip: the farthest voxel along the axis among the rings near the end.
   std::vector<Eigen::Vector3d> near_tip;
