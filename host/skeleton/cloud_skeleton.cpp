@@ -264,10 +264,21 @@ bool is_a_limb(const Extraction& x, const std::vector<int>& path) {
   return 2 * rings >= radii.size() && protrusion >= needed * median(radii);
 }
 
+//! Whether every piece of a spur (tip first) is wider than the one before,
+//! up to the junction: a cap of the body with no stretch of tube, as the
+//! bands round a frame's corner grow from the root there (0.42 to 1.89
+//! tube radii, where a limb's stay at its radius past its cap).
+bool widens_all_the_way(const Extraction& x, const std::vector<int>& path) {
+  for (size_t k = 1; k < path.size(); ++k)
+    if (x.node(path[k]).radius <= x.node(path[k - 1]).radius) return false;
+  return path.size() >= 3;
+}
+
 //! Whether a spur is short for its junction: its tip within kSpurRadii
 //! junction radii of it, or within 2.5 and rising less than kSpurRise
-//! above it; or a single piece that is an arc (a sliver of a band beside
-//! the junction, e.g. along a palm's edge), however far it reaches.
+//! above it or widening all the way; or a single piece that is an arc (a
+//! sliver of a band beside the junction, e.g. along a palm's edge), however
+//! far it reaches.
 bool is_a_bump(const Extraction& x, const std::vector<int>& path) {
   int tip = path.front(), junction = path.back();
   double reach = (x.position[size_t(tip)] - x.position[size_t(junction)]).norm();
@@ -275,7 +286,7 @@ bool is_a_bump(const Extraction& x, const std::vector<int>& path) {
   double radius = spur_radius(x, junction, path[path.size() - 2]);
   bool short_spur = reach < kSpurRadii * radius || (rise < kSpurRise * radius && reach < 2.5 * radius);
   bool sliver = path.size() == 2 && !is_ring(x.node(tip));
-  return short_spur || sliver;
+  return short_spur || sliver || (reach < 2.5 * radius && widens_all_the_way(x, path));
 }
 
 //! Prunes spurs that are bumps and not limbs, the shortest at each junction
