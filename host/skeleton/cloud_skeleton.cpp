@@ -289,17 +289,43 @@ bool is_a_bump(const Extraction& x, const std::vector<int>& path) {
   return short_spur || sliver || (reach < 2.5 * radius && widens_all_the_way(x, path));
 }
 
+//! Whether the two spurs of a junction of degree 3 are the tips of two
+//! limbs that part only at their caps (two arms of a star 16 degrees apart):
+//! both bumps, tips 1.5 of the junction's ring radii apart or more, and one
+//! of them a tube narrower than the band they split from (a ring at most
+//! 0.7 of its radius). An open rim splits into two arcs as wide as the tube,
+//! and a crease's bump has a limb for a sibling: neither is a fork.
+bool is_a_late_fork(const Extraction& x, int junction, const std::vector<std::vector<int>>& spurs) {
+  if (x.work.degree(junction) != 3 || spurs.size() != 2 || !is_ring(x.node(junction))) return false;
+  const double band = x.node(junction).radius;
+  bool narrower = false;
+  for (const auto& spur : spurs) {
+    if (!is_a_bump(x, spur) || is_a_limb(x, spur)) return false;
+    for (size_t k = 0; k + 1 < spur.size(); ++k)
+      narrower |= is_ring(x.node(spur[k])) && x.node(spur[k]).radius <= 0.7 * band;
+  }
+  const double apart = (x.position[size_t(spurs[0].front())] - x.position[size_t(spurs[1].front())]).norm();
+  return narrower && apart >= 1.5 * band;
+}
+
 //! Prunes spurs that are bumps and not limbs, the shortest at each junction
 //! first, until none is left.
 void prune_spurs(Extraction& x) {
   for (bool changed = true; changed;) {
     changed = false;
     std::map<int, std::pair<double, std::vector<int>>> shortest;  // per junction
+    std::map<int, std::vector<std::vector<int>>> spurs;           // per junction
+    for (size_t v = 0; v < x.work.adjacent.size(); ++v)
+      if (x.work.alive[v] && x.work.degree(int(v)) == 1) {
+        std::vector<int> path = walk_from_end(x, int(v));
+        spurs[path.back()].push_back(path);
+      }
     for (size_t v = 0; v < x.work.adjacent.size(); ++v) {
       if (!x.work.alive[v] || x.work.degree(int(v)) != 1) continue;
       std::vector<int> path = walk_from_end(x, int(v));
       int junction = path.back();
       if (x.work.degree(junction) < 3 || !is_a_bump(x, path) || is_a_limb(x, path)) continue;
+      if (is_a_late_fork(x, junction, spurs[junction])) continue;
       double reach = (x.position[v] - x.position[size_t(junction)]).norm();
       auto found = shortest.find(junction);
       if (found == shortest.end() || reach < found->second.first) shortest[junction] = {reach, path};
