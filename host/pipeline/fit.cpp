@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <future>
 
 #include "core/errors.h"
 #include "cells/cell_facing.h"
@@ -33,13 +34,35 @@ IterationCallback snapshot_writer(const std::string& directory, const QuadMesh& 
   };
 }
 
+//! The OpenCL device set up on another thread (context, queue, program from
+//! the cache: 50 ms on PoCL) while this one prepares the mesh and the cells,
+//! much of it on one core: on the knot, 0.44-0.52 s before the first
+//! iteration became 0.38-0.41 (docs/PERFORMANCE.md). Nothing comes of a
+//! failure there: the backend is then made again where it is needed, which
+//! reports the failure or warns and falls back as make_backend does, on
+//! this thread.
+std::future<std::unique_ptr<EvolutionBackend>> start_opencl_backend(const FitOptions& options) {
+  if (!options.evolve || options.backend == BackendKind::kSerial) return {};
+  return std::async(std::launch::async, [device = options.device]() -> std::unique_ptr<EvolutionBackend> {
+    try {
+      return make_backend(BackendKind::kOpenCL, device);
+    } catch (const std::exception&) {
+      return nullptr;
+    }
+  });
+}
+
 //! Runs the evolution on the prepared setup and leaves its positions in
-//! `mesh`; its stages are timed as `stage_prefix` + the stage's name.
+//! `mesh`; its stages are timed as `stage_prefix` + the stage's name. The
+//! backend is `early_backend`'s when it holds one (taken), else made here.
 FitReport::Evolution evolve_mesh(EvolutionSetup& setup, const FitOptions& options,
                                  const EvolutionParameters& parameters, QuadMesh& mesh, StageTimer& timer,
+                                 std::future<std::unique_ptr<EvolutionBackend>>& early_backend,
                                  const std::string& stage_prefix = "") {
-  auto backend =
-      timer.run(stage_prefix + "backend_setup", [&] { return make_backend(options.backend, options.device); });
+  auto backend = timer.run(stage_prefix + "backend_setup", [&] {
+    std::unique_ptr<EvolutionBackend> early = early_backend.valid() ? early_backend.get() : nullptr;
+    return early ? std::move(early) : make_backend(options.backend, options.device);
+  });
   timer.run(stage_prefix + "upload", [&] {
     backend->load(setup.cells, setup.arrays, setup.regions);
     return 0;
@@ -70,6 +93,7 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
     input.skeleton_name = "the skeleton extracted from " + points_path;
   }
   const std::string& skeleton_path = input.skeleton_name;
+  std::future<std::unique_ptr<EvolutionBackend>> early_backend = start_opencl_backend(options);
   // The scan's normals judge the mesh's orientation at the end; a sample of
   // them is enough, and the rest need not be sorted and carried along.
   OrientedSample oriented =
@@ -117,7 +141,7 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
     report.cells = FitReport::Cells{setup.cells.cell_count(), setup.cells.node_count(), setup.cells.depth,
                                     double(setup.cells.byte_size()) / 1e6, facing_fraction(setup.cells)};
   if (options.evolve && setup.initial.finer_levels > 0) {
-    report.coarse_evolution = evolve_mesh(setup, options, parameters, result.mesh, timer, "coarse_");
+    report.coarse_evolution = evolve_mesh(setup, options, parameters, result.mesh, timer, early_backend, "coarse_");
     timer.run("refine_fitted", [&] {
       refine_fitted_mesh(result.mesh, setup.initial.finer_levels);
       setup.arrays = flatten_mesh(result.mesh);
@@ -125,7 +149,7 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
       return 0;
     });
   }
-  if (options.evolve) report.evolution = evolve_mesh(setup, options, parameters, result.mesh, timer);
+  if (options.evolve) report.evolution = evolve_mesh(setup, options, parameters, result.mesh, timer, early_backend);
   if (options.measure) {
     report.metrics =
         timer.run("metrics", [&] { return measure_quality(result.mesh, cloud, setup.cells, &graph, &oriented); });
