@@ -36,8 +36,8 @@ IterationCallback snapshot_writer(const std::string& directory, const QuadMesh& 
 
 //! The OpenCL device set up on another thread (context, queue, program from
 //! the cache: 50 ms on PoCL) while this one prepares the mesh and the cells,
-//! much of it on one core: on the knot, 0.44-0.52 s before the first
-//! iteration became 0.38-0.41 (docs/PERFORMANCE.md). Nothing comes of a
+//! much of it on one core: on the knot, the median time before the first
+//! iteration went 0.489 -> 0.428 s (docs/PERFORMANCE.md). Nothing comes of a
 //! failure there: the backend is then made again where it is needed, which
 //! reports the failure or warns and falls back as make_backend does, on
 //! this thread.

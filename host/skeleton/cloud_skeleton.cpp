@@ -267,7 +267,7 @@ bool is_a_limb(const Extraction& x, const std::vector<int>& path) {
 //! Whether every piece of a spur (tip first) is wider than the one before,
 //! up to the junction: a cap of the body with no stretch of tube, as the
 //! bands round a frame's corner grow from the root there (0.42 to 1.89
-//! tube radii, where a limb's stay at its radius past its cap).
+//! tube radii), where a limb's rings stay at its radius past its cap.
 bool widens_all_the_way(const Extraction& x, const std::vector<int>& path) {
   for (size_t k = 1; k < path.size(); ++k)
     if (x.node(path[k]).radius <= x.node(path[k - 1]).radius) return false;
