@@ -107,18 +107,22 @@ double chain_length(const Extraction& x, const std::vector<int>& nodes) {
 
 double median(std::vector<double> values) { return quantile_of(std::move(values), 0.5); }
 
-//! The median radius of a chain's rings (arcs left out, and the rings of a
-//! cap: those within their radius of an end's tip); infinite when it has
-//! none, so that no ring is wider than a multiple of it.
+//! Whether node v of a chain (`nodes`) is a ring of a cap: the chain runs to
+//! an end, and v lies within its own radius of that end's tip. There the
+//! bands of distance lean and their centres with them (the T's arm, four
+//! radii long: its axis tilted 10 degrees, the junction 0.25 radii off).
+bool in_a_cap(const Extraction& x, const std::vector<int>& nodes, int v) {
+  return x.work.degree(nodes.back()) == 1 &&
+         (x.position[size_t(v)] - x.position[size_t(nodes.back())]).norm() < x.node(v).radius;
+}
+
+//! The median radius of a chain's rings (arcs and the rings of a cap left
+//! out); infinite when it has none, so that no ring is wider than a
+//! multiple of it.
 double median_ring_radius(const Extraction& x, const std::vector<int>& nodes) {
-  const bool to_an_end = x.work.degree(nodes.back()) == 1;
-  const Eigen::Vector3d& tip = x.position[size_t(nodes.back())];
   std::vector<double> radii;
-  for (int v : nodes) {
-    if (!is_ring(x.node(v))) continue;
-    if (to_an_end && (x.position[size_t(v)] - tip).norm() < x.node(v).radius) continue;
-    radii.push_back(x.node(v).radius);
-  }
+  for (int v : nodes)
+    if (is_ring(x.node(v)) && !in_a_cap(x, nodes, v)) radii.push_back(x.node(v).radius);
   return radii.empty() ? INFINITY : median(radii);
 }
 
@@ -313,22 +317,21 @@ bool is_a_late_fork(const Extraction& x, int junction, const std::vector<std::ve
 void prune_spurs(Extraction& x) {
   for (bool changed = true; changed;) {
     changed = false;
-    std::map<int, std::pair<double, std::vector<int>>> shortest;  // per junction
-    std::map<int, std::vector<std::vector<int>>> spurs;           // per junction
+    std::map<int, std::vector<std::vector<int>>> spurs;  // per junction, each from its tip, in tip order
     for (size_t v = 0; v < x.work.adjacent.size(); ++v)
       if (x.work.alive[v] && x.work.degree(int(v)) == 1) {
         std::vector<int> path = walk_from_end(x, int(v));
-        spurs[path.back()].push_back(path);
+        spurs[path.back()].push_back(std::move(path));
       }
-    for (size_t v = 0; v < x.work.adjacent.size(); ++v) {
-      if (!x.work.alive[v] || x.work.degree(int(v)) != 1) continue;
-      std::vector<int> path = walk_from_end(x, int(v));
-      int junction = path.back();
-      if (x.work.degree(junction) < 3 || !is_a_bump(x, path) || is_a_limb(x, path)) continue;
-      if (is_a_late_fork(x, junction, spurs[junction])) continue;
-      double reach = (x.position[v] - x.position[size_t(junction)]).norm();
-      auto found = shortest.find(junction);
-      if (found == shortest.end() || reach < found->second.first) shortest[junction] = {reach, path};
+    std::map<int, std::pair<double, std::vector<int>>> shortest;  // per junction
+    for (const auto& [junction, paths] : spurs) {
+      if (x.work.degree(junction) < 3 || is_a_late_fork(x, junction, paths)) continue;
+      for (const auto& path : paths) {
+        if (!is_a_bump(x, path) || is_a_limb(x, path)) continue;
+        double reach = (x.position[size_t(path.front())] - x.position[size_t(junction)]).norm();
+        auto found = shortest.find(junction);
+        if (found == shortest.end() || reach < found->second.first) shortest[junction] = {reach, path};
+      }
     }
     for (auto& [junction, spur] : shortest) {
       for (size_t k = 0; k + 1 < spur.second.size(); ++k) x.work.remove_node(spur.second[k]);
@@ -473,26 +476,22 @@ struct Line {
 //! The axis of a chain near one of its ends (`nodes` start there): the
 //! tangent, at the first ring whose distance from `from` is at least `near`,
 //! of a parabola through the ring centres up to `far` (a line through fewer
-//! than four), arcs left out. The tangent rather than a mean line, so that a
-//! limb curving away from its junction does not throw the junction off.
-//! Rings wider than `widest` are left out too. None when fewer than two
+//! than four), arcs and the rings of a cap (in_a_cap) left out. The tangent
+//! rather than a mean line, so that a limb curving away from its junction
+//! does not throw the junction off. Rings wider than `widest` are left out
+//! too. None when fewer than two
 //! rings qualify.
 bool fit_axis(const Extraction& x, const std::vector<int>& nodes, const Eigen::Vector3d& from, double near, double far,
               Line& line, double widest = INFINITY) {
   std::vector<Eigen::Vector3d> points;
   std::vector<double> along;
   double walked = 0;
-  // Not the rings of a cap: within a ring radius of an end's tip the bands
-  // of distance lean and their centres with them (the T's arm, four radii
-  // long: its axis tilted 10 degrees, the junction 0.25 radii off).
-  const bool to_an_end = x.work.degree(nodes.back()) == 1;
-  const Eigen::Vector3d& tip = x.position[size_t(nodes.back())];
   for (size_t k = 1; k + 1 < nodes.size(); ++k) {
     const Eigen::Vector3d& p = x.position[size_t(nodes[k])];
     double distance = (p - from).norm();
     if (distance > far) break;
     if (distance < near || !is_ring(x.node(nodes[k])) || x.node(nodes[k]).radius > widest) continue;
-    if (to_an_end && (p - tip).norm() < x.node(nodes[k]).radius) continue;
+    if (in_a_cap(x, nodes, nodes[k])) continue;
     if (!points.empty()) walked += (p - points.back()).norm();
     points.push_back(p);
     along.push_back(walked);
