@@ -30,6 +30,19 @@ void drop_single_faces(std::vector<std::pair<int, int>>& defects) {
                 defects.end());
 }
 
+//! Half the mean edge length: the list of close triangle pairs then holds
+//! about a triangle's ring of neighbours, and lasts while the vertices move
+//! less than a quarter of an edge (docs/PERFORMANCE.md).
+double close_pair_gap(const MeshArrays& mesh) {
+  double total = 0;
+  for (size_t f = 0; f < mesh.face_count(); ++f)
+    for (size_t k = 0; k < 4; ++k)
+      total +=
+          (position(mesh.positions, mesh.faces[4 * f + k]) - position(mesh.positions, mesh.faces[4 * f + (k + 1) % 4]))
+              .norm();
+  return mesh.face_count() > 0 ? 0.5 * total / double(4 * mesh.face_count()) : 0.0;
+}
+
 bool vertex_moved(const std::vector<float>& before, const std::vector<float>& after, uint32_t v) {
   size_t i = 3 * size_t(v);
   return before[i] != after[i] || before[i + 1] != after[i + 1] || before[i + 2] != after[i + 2];
@@ -37,7 +50,7 @@ bool vertex_moved(const std::vector<float>& before, const std::vector<float>& af
 
 }  // namespace
 
-CrossingGuard::CrossingGuard(const MeshArrays& mesh) : mesh_(mesh) {
+CrossingGuard::CrossingGuard(const MeshArrays& mesh) : mesh_(mesh), close_pairs_(close_pair_gap(mesh)) {
   // Faces across each edge, from the vertex-face lists (no map of edges: at
   // millions of faces that would cost more than the mesh).
   for (size_t f = 0; f < mesh.face_count(); ++f)
@@ -66,7 +79,7 @@ CrossingGuard::CrossingGuard(const MeshArrays& mesh) : mesh_(mesh) {
 std::vector<CrossingGuard::Defect> CrossingGuard::defects(const std::vector<float>& positions,
                                                           const std::vector<char>* only_faces) const {
   auto wanted = [&](int f) { return !only_faces || (*only_faces)[size_t(f)]; };
-  std::vector<Defect> found = intersecting_face_pairs(triangulate(mesh_.faces, positions), only_faces);
+  std::vector<Defect> found = close_pairs_.intersecting_face_pairs(triangulate(mesh_.faces, positions), only_faces);
   // Per face, once: its normal, and whether it turned over or lost shape.
   long faces = long(mesh_.face_count());
   std::vector<Eigen::Vector3d> normal(static_cast<size_t>(faces));

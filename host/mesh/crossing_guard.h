@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "mesh/close_triangle_pairs.h"
 #include "mesh/mesh_arrays.h"
 
 namespace mcquad {
@@ -54,6 +55,9 @@ class CrossingGuard {
   std::vector<Defect> known_;                        //!< face pairs crossing or folded at the last accepted positions
   std::vector<double> jacobian_floor_;               //!< per face: the least scaled Jacobian it may take
   std::vector<uint32_t> low_faces_;                  //!< faces whose floor is still under kLeastScaledJacobian
+  //! The crossing test's broad phase, kept from call to call while the
+  //! vertices stay near (a cache: defects() gives the same answers without).
+  mutable CloseTrianglePairs close_pairs_;
 
   //! Floors rise with the quads, up to kLeastScaledJacobian.
   void raise_jacobian_floors(const std::vector<float>& positions);

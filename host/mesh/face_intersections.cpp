@@ -106,14 +106,15 @@ MeshTriangles triangulate(const std::vector<uint32_t>& quads, const std::vector<
   return triangles;
 }
 
-namespace {
-
-//! Whether triangles a and b (not sharing a vertex) intersect: boxes first,
-//! then the exact test.
-bool triangle_pair_intersects(const MeshTriangles& triangles, size_t a, size_t b) {
+bool triangles_share_a_vertex(const MeshTriangles& triangles, size_t a, size_t b) {
   for (int i : triangles.corners[a])
     for (int j : triangles.corners[b])
-      if (i == j) return false;
+      if (i == j) return true;
+  return false;
+}
+
+bool triangle_pair_intersects(const MeshTriangles& triangles, size_t a, size_t b) {
+  if (triangles_share_a_vertex(triangles, a, b)) return false;
   Eigen::Vector3d pa[3], pb[3];
   for (int k = 0; k < 3; ++k) pa[k] = triangles.corner(a, k), pb[k] = triangles.corner(b, k);
   Eigen::Vector3d lo_a = pa[0].cwiseMin(pa[1]).cwiseMin(pa[2]), hi_a = pa[0].cwiseMax(pa[1]).cwiseMax(pa[2]);
@@ -121,8 +122,6 @@ bool triangle_pair_intersects(const MeshTriangles& triangles, size_t a, size_t b
   if ((lo_a.array() > hi_b.array()).any() || (lo_b.array() > hi_a.array()).any()) return false;
   return triangles_intersect(pa, pb);
 }
-
-}  // namespace
 
 std::vector<std::pair<int, int>> intersecting_face_pairs(const QuadMesh& mesh) {
   return intersecting_face_pairs(triangulate(mesh));

@@ -38,6 +38,14 @@ MeshTriangles triangulate(const QuadMesh& mesh);
 //! The same from flat quads (4 vertex ids each) and positions (3 floats each).
 MeshTriangles triangulate(const std::vector<uint32_t>& quads, const std::vector<float>& positions);
 
+//! Whether triangles a and b have a corner in common (then they touch, and
+//! count as neighbours, not as crossing).
+bool triangles_share_a_vertex(const MeshTriangles& triangles, size_t a, size_t b);
+
+//! Whether triangles a and b intersect: false when they share a vertex, then
+//! their boxes, then the exact test.
+bool triangle_pair_intersects(const MeshTriangles& triangles, size_t a, size_t b);
+
 //! Pairs of faces that intersect, faces sharing a vertex excluded, sorted.
 //! Each quad is split into two triangles along its 0-2 diagonal. Candidates
 //! are the triangles whose bounding boxes overlap (found in a TriangleTree,

@@ -4,6 +4,7 @@
 
 #include "cells/cell_tree.h"
 #include "helpers.h"
+#include "mesh/close_triangle_pairs.h"
 #include "mesh/face_intersections.h"
 #include "metrics/mesh_metrics.h"
 
@@ -55,6 +56,30 @@ TEST(FaceIntersections, BroadPhaseMatchesBruteForce) {
     for (size_t f = 0; f < only.size(); f += 3) only[f] = 1;
     EXPECT_EQ(intersecting_face_pairs(triangles, &only), brute_force(triangles, &only)) << "seed " << seed;
   }
+}
+
+//! The Verlet list of the crossing guard: as the vertices move step by step,
+//! small steps reuse the list and large ones rebuild it, and every call
+//! answers as the brute force does, for all faces and for some.
+TEST(CloseTrianglePairs, MatchBruteForceAsTheVerticesMove) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  MeshTriangles triangles = triangulate(crumpled_sheets(10, 4));
+  CloseTrianglePairs close(0.2);
+  size_t calls = 0;
+  for (int step = 0; step < 24; ++step) {
+    // Mostly small moves (the list lasts 2 of them at most); every 6th moves
+    // up to half an edge, far past the list's gap.
+    double reach = step % 6 == 5 ? 0.5 : 0.04;
+    for (auto& p : triangles.positions) p += reach * Eigen::Vector3d(unit(random), unit(random), unit(random));
+    std::vector<char> only(size_t(triangles.face.back() + 1), 0);
+    for (size_t f = size_t(step) % 4; f < only.size(); f += 4) only[f] = 1;
+    EXPECT_EQ(close.intersecting_face_pairs(triangles), brute_force(triangles)) << "step " << step;
+    EXPECT_EQ(close.intersecting_face_pairs(triangles, &only), brute_force(triangles, &only)) << "step " << step;
+    calls += 2;
+  }
+  EXPECT_GE(close.builds(), 6u) << "the large moves and the small ones' sum must rebuild the list";
+  EXPECT_LE(close.builds(), calls / 3) << "small moves must reuse the list";
 }
 
 TEST(FaceIntersections, MetricsSayWhereFacesCross) {
