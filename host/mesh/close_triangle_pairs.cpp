@@ -42,21 +42,15 @@ std::vector<std::pair<int, int>> CloseTrianglePairs::intersecting_face_pairs(con
                                                                              const std::vector<char>* only_faces) {
   if (moved_too_far(triangles)) build(triangles);
   auto wanted = [&](int t) { return !only_faces || (*only_faces)[size_t(triangles.face[size_t(t)])]; };
-  std::vector<std::vector<std::pair<int, int>>> found(static_cast<size_t>(omp_get_max_threads()));
+  FacePairsFound found;
   const long count = long(candidates_.size());
 #pragma omp parallel for schedule(static) if (count > 65536)
   for (long k = 0; k < count; ++k) {
     auto [a, b] = candidates_[size_t(k)];
-    if ((wanted(a) || wanted(b)) && triangle_pair_intersects(triangles, size_t(a), size_t(b))) {
-      const int fa = triangles.face[size_t(a)], fb = triangles.face[size_t(b)];
-      found[size_t(omp_get_thread_num())].emplace_back(std::min(fa, fb), std::max(fa, fb));
-    }
+    if ((wanted(a) || wanted(b)) && triangle_pair_intersects(triangles, size_t(a), size_t(b)))
+      found.add(triangles, size_t(a), size_t(b), omp_get_thread_num());
   }
-  std::vector<std::pair<int, int>> pairs;
-  for (const auto& some : found) pairs.insert(pairs.end(), some.begin(), some.end());
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  return pairs;
+  return found.sorted();
 }
 
 }  // namespace mcquad

@@ -2,6 +2,8 @@
 
 #include "mesh/triangle_tree.h"
 
+#include <omp.h>
+
 #include <algorithm>
 
 namespace mcquad {
@@ -139,17 +141,26 @@ std::vector<std::pair<int, int>> intersecting_face_pairs(const MeshTriangles& tr
     wanted_triangles.resize(n);
     for (size_t t = 0; t < n; ++t) wanted_triangles[t] = (*only_faces)[size_t(triangles.face[t])];
   }
-  // Threads pay off only on large meshes (the evolution's guard calls this
-  // every step, often with a few faces).
-  std::vector<std::vector<std::pair<int, int>>> found(static_cast<size_t>(omp_get_max_threads()));
+  // Threads pay off only on large meshes (intersecting_face_pairs runs on
+  // every mesh `mcquad metrics` measures, often small ones).
+  FacePairsFound found;
   tree.for_each_overlapping_pair(only_faces ? &wanted_triangles : nullptr, [&](size_t a, size_t b, int thread) {
-    const int fa = triangles.face[a], fb = triangles.face[b];
-    if (fa != fb && triangle_pair_intersects(triangles, a, b))
-      found[size_t(thread)].emplace_back(std::min(fa, fb), std::max(fa, fb));
+    if (triangles.face[a] != triangles.face[b] && triangle_pair_intersects(triangles, a, b))
+      found.add(triangles, a, b, thread);
   });
+  return found.sorted();
+}
+
+FacePairsFound::FacePairsFound() : per_thread_(static_cast<size_t>(omp_get_max_threads())) {}
+
+void FacePairsFound::add(const MeshTriangles& triangles, size_t a, size_t b, int thread) {
+  const int fa = triangles.face[a], fb = triangles.face[b];
+  per_thread_[size_t(thread)].emplace_back(std::min(fa, fb), std::max(fa, fb));
+}
+
+std::vector<std::pair<int, int>> FacePairsFound::sorted() const {
   std::vector<std::pair<int, int>> pairs;
-  for (const auto& some : found) pairs.insert(pairs.end(), some.begin(), some.end());
-  // A quad is two triangles, so a pair of faces can be found twice.
+  for (const auto& some : per_thread_) pairs.insert(pairs.end(), some.begin(), some.end());
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   return pairs;

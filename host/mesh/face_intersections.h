@@ -46,6 +46,20 @@ bool triangles_share_a_vertex(const MeshTriangles& triangles, size_t a, size_t b
 //! their boxes, then the exact test.
 bool triangle_pair_intersects(const MeshTriangles& triangles, size_t a, size_t b);
 
+//! The intersecting face pairs found by several threads: each adds its own,
+//! then sorted() merges them, each pair once (a quad is two triangles, so a
+//! pair of faces can be found twice).
+class FacePairsFound {
+ public:
+  FacePairsFound();
+  //! Triangles a and b intersect: their faces are a pair.
+  void add(const MeshTriangles& triangles, size_t a, size_t b, int thread);
+  std::vector<std::pair<int, int>> sorted() const;
+
+ private:
+  std::vector<std::vector<std::pair<int, int>>> per_thread_;
+};
+
 //! Pairs of faces that intersect, faces sharing a vertex excluded, sorted.
 //! Each quad is split into two triangles along its 0-2 diagonal. Candidates
 //! are the triangles whose bounding boxes overlap (found in a TriangleTree,
