@@ -174,6 +174,11 @@ struct FitCommand {
     add_word_option(app, "--curvature-correction", e.curvature_correction, on_off_words(),
                     "robust mode: correct each sample's projection by the mesh's curvature, so that vertices settle "
                     "on a curved surface, not inside it (on, off)");
+    app->add_option("--turned-face-rounds", e.turned_face_rounds,
+                    "robust mode, on a scan with normals: at most this many rounds of smoothing the faces turned "
+                    "against the scan's normals after the evolution (0 = off)")
+        ->check(range("turned_face_rounds"))
+        ->capture_default_str();
     app->add_option("--iterations", e.iterations, "maximal number of iterations")->capture_default_str();
     app->add_option("--tolerance", e.tolerance,
                     "stop when the error level improves by less than this fraction (0 = never)")
@@ -257,6 +262,13 @@ struct FitCommand {
           "backend: %s on %s; error level (mean distance to the cloud's local planes) %.4g -> %.4g after %zu "
           "iterations\n",
           e.backend.c_str(), e.device.c_str(), e.initial_error_level, e.final_error_level(), e.iterations.size());
+      if (e.turned_faces && e.turned_faces->faces_before > 0) {
+        const TurnedFaceSmoothing& t = *e.turned_faces;
+        std::printf(
+            "turned faces: %zu facing against the scan's normals (%.2f %% of the area) -> %zu (%.2f %%), %d rounds of "
+            "smoothing and %u steps settling\n",
+            t.faces_before, 100 * t.area_before, t.faces_after, 100 * t.area_after, t.rounds, t.settle_iterations);
+      }
     }
     if (r.evolution && r.metrics) {
       const QualityMetrics& q = *r.metrics;

@@ -61,6 +61,10 @@ struct EvolutionParameters {
   //! vertices settle on a curved surface rather than inside it by the cells'
   //! sagitta (docs/DESIGN.md, "Curvature correction").
   bool curvature_correction = true;
+  //! Robust mode, on a scan with normals: after the evolution, at most this
+  //! many rounds of smoothing the faces turned against the scan's normals
+  //! (evolution/turned_face_smoothing.h); 0 = off.
+  unsigned turned_face_rounds = 20;
 };
 
 }  // namespace mcquad

@@ -78,7 +78,7 @@ size_t guard_step(EvolutionBackend& backend, const MeshArrays& mesh, CrossingGua
 }  // namespace
 
 EvolutionResult evolve(EvolutionBackend& backend, const MeshArrays& mesh, const EvolutionParameters& parameters,
-                       const IterationCallback& after_iteration) {
+                       const IterationCallback& after_iteration, unsigned first_iteration) {
   using Clock = std::chrono::steady_clock;
   EvolutionResult result;
   result.initial_error_level = backend.error_level();
@@ -92,10 +92,10 @@ EvolutionResult evolve(EvolutionBackend& backend, const MeshArrays& mesh, const 
   std::unique_ptr<CrossingGuard> crossing_guard = guard ? std::make_unique<CrossingGuard>(mesh) : nullptr;
   for (unsigned i = 0; i < parameters.iterations; ++i) {
     auto start = Clock::now();
-    backend.step(make_step_params(parameters, i));
+    backend.step(make_step_params(parameters, first_iteration + i));
     backend.finish();
     IterationRecord record;
-    record.iteration = i + 1;
+    record.iteration = first_iteration + i + 1;
     auto stepped = Clock::now();
     if (crossing_guard)
       record.held_back_vertices =

@@ -36,8 +36,10 @@ device::mcq_step_params make_step_params(const EvolutionParameters& parameters, 
 //! Runs the evolution on a loaded backend (`mesh` is what it was loaded
 //! with): up to `iterations` Jacobi steps, each followed in robust mode by the
 //! crossing guard, stopping early when the error level improves by less than `tolerance`
-//! (relative) from one iteration to the next.
+//! (relative) from one iteration to the next. Iterations are numbered
+//! (and seeded) from `first_iteration` on, so an evolution that goes on
+//! draws new rays.
 EvolutionResult evolve(EvolutionBackend& backend, const MeshArrays& mesh, const EvolutionParameters& parameters,
-                       const IterationCallback& after_iteration = {});
+                       const IterationCallback& after_iteration = {}, unsigned first_iteration = 0);
 
 }  // namespace mcquad

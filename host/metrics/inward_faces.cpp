@@ -1,6 +1,5 @@
 #include "metrics/inward_faces.h"
 
-#include "core/sorted_point_tree.h"
 #include "core/shared_math.h"
 #include "skeleton/bone_assignment.h"
 
@@ -46,30 +45,6 @@ std::vector<int> inward_face_indices(const QuadMesh& mesh, const SkeletonGraph& 
     if (normal.dot(outward) < 0) inward.push_back(f.idx());
   }
   return inward;
-}
-
-std::vector<int> faces_against_normals(const QuadMesh& mesh, const OrientedSample& oriented) {
-  // Fit and metrics sort the sample spatially, so this tree builds in linear time.
-  SortedPointTree index(oriented.points);
-  std::vector<char> against(mesh.n_faces(), 0);
-#pragma omp parallel for schedule(static)
-  for (long f = 0; f < long(mesh.n_faces()); ++f) {
-    Eigen::Vector3d normal = face_vector_area(mesh, mesh.face_handle(int(f)));
-    long nearest = index.nearest(face_centroid(mesh, int(f)).cast<float>()).first;
-    if (nearest >= 0) against[size_t(f)] = normal.dot(oriented.normals[size_t(nearest)].cast<double>()) < 0;
-  }
-  std::vector<int> faces;
-  for (size_t f = 0; f < against.size(); ++f)
-    if (against[f]) faces.push_back(int(f));
-  return faces;
-}
-
-double area_fraction(const QuadMesh& mesh, const std::vector<int>& faces) {
-  auto area = [&](QuadMesh::FaceHandle f) { return 0.5 * face_vector_area(mesh, f).norm(); };
-  double total = 0, part = 0;
-  for (auto f : mesh.faces()) total += area(f);
-  for (int f : faces) part += area(mesh.face_handle(f));
-  return total > 0 ? part / total : 0.0;
 }
 
 }  // namespace mcquad

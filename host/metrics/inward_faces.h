@@ -4,18 +4,10 @@
 
 #include "core/point_cloud.h"
 #include "core/quad_mesh.h"
+#include "mesh/scan_orientation.h"
 #include "skeleton/skeleton_graph.h"
 
 namespace mcquad {
-
-//! Faces whose normal points against the scan's normal at the oriented
-//! point nearest their centroid. The sample's order changes nothing but
-//! which of two equally near points is taken; spatial order
-//! (sort_spatially) builds its index 3x faster.
-std::vector<int> faces_against_normals(const QuadMesh& mesh, const OrientedSample& oriented);
-
-//! The share of the mesh's area that the given faces cover.
-double area_fraction(const QuadMesh& mesh, const std::vector<int>& faces);
 
 //! Faces whose normal points into the tube: toward the skeleton instead of
 //! away (away from a smooth minimum of the distances to the bones, so a

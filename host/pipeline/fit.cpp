@@ -56,8 +56,8 @@ std::future<std::unique_ptr<EvolutionBackend>> start_opencl_backend(const FitOpt
 //! `mesh`; its stages are timed as `stage_prefix` + the stage's name. The
 //! backend is `early_backend`'s when it holds one (taken), else made here.
 FitReport::Evolution evolve_mesh(EvolutionSetup& setup, const FitOptions& options,
-                                 const EvolutionParameters& parameters, QuadMesh& mesh, StageTimer& timer,
-                                 std::future<std::unique_ptr<EvolutionBackend>>& early_backend,
+                                 const EvolutionParameters& parameters, const OrientedSample& oriented, QuadMesh& mesh,
+                                 StageTimer& timer, std::future<std::unique_ptr<EvolutionBackend>>& early_backend,
                                  const std::string& stage_prefix = "") {
   auto backend = timer.run(stage_prefix + "backend_setup", [&] {
     std::unique_ptr<EvolutionBackend> early = early_backend.valid() ? early_backend.get() : nullptr;
@@ -73,8 +73,17 @@ FitReport::Evolution evolve_mesh(EvolutionSetup& setup, const FitOptions& option
   EvolutionResult evolution =
       timer.run(stage_prefix + "evolution", [&] { return evolve(*backend, setup.arrays, parameters, snapshot); });
   set_positions(mesh, evolution.positions);
-  return {backend->name(), backend->device_name(), evolution.initial_error_level, std::move(evolution.iterations),
-          evolution.stop_reason};
+  FitReport::Evolution report;
+  report.backend = backend->name();
+  report.device = backend->device_name();
+  report.initial_error_level = evolution.initial_error_level;
+  report.iterations = std::move(evolution.iterations);
+  report.stop_reason = evolution.stop_reason;
+  if (parameters.mode == EvolutionParameters::Mode::kRobust && parameters.turned_face_rounds > 0 && !oriented.empty())
+    report.turned_faces = timer.run(stage_prefix + "turned_faces", [&] {
+      return turn_faces_out(*backend, setup.arrays, parameters, oriented, mesh, unsigned(report.iterations.size()));
+    });
+  return report;
 }
 
 //! The stages from the graph on, with the reading already timed.
@@ -141,7 +150,8 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
     report.cells = FitReport::Cells{setup.cells.cell_count(), setup.cells.node_count(), setup.cells.depth,
                                     double(setup.cells.byte_size()) / 1e6, facing_fraction(setup.cells)};
   if (options.evolve && setup.initial.finer_levels > 0) {
-    report.coarse_evolution = evolve_mesh(setup, options, parameters, result.mesh, timer, early_backend, "coarse_");
+    report.coarse_evolution =
+        evolve_mesh(setup, options, parameters, oriented, result.mesh, timer, early_backend, "coarse_");
     timer.run("refine_fitted", [&] {
       refine_fitted_mesh(result.mesh, setup.initial.finer_levels);
       setup.arrays = flatten_mesh(result.mesh);
@@ -149,7 +159,8 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
       return 0;
     });
   }
-  if (options.evolve) report.evolution = evolve_mesh(setup, options, parameters, result.mesh, timer, early_backend);
+  if (options.evolve)
+    report.evolution = evolve_mesh(setup, options, parameters, oriented, result.mesh, timer, early_backend);
   if (options.measure) {
     report.metrics =
         timer.run("metrics", [&] { return measure_quality(result.mesh, cloud, setup.cells, &graph, &oriented); });

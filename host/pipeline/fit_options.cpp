@@ -21,6 +21,7 @@ constexpr OptionRange kOptionRanges[] = {
     {"held_back_relaxation", 0, 1},
     {"hit_band", 0, 1},
     {"min_facing", -1, 0.95},
+    {"turned_face_rounds", 0, 1000},
     {"tolerance", 0, HUGE_VAL},
     {"cones", 1, 64},
     {"generators", 1, 64},
@@ -60,6 +61,7 @@ void check_fit_options(const FitOptions& options) {
   check_range("held_back_relaxation", e.held_back_relaxation);
   check_range("hit_band", e.hit_band);
   check_range("min_facing", e.min_facing);
+  check_range("turned_face_rounds", e.turned_face_rounds);
   check_range("tolerance", e.tolerance);
   check_range("cones", e.cones);
   check_range("generators", e.generators);

@@ -21,6 +21,7 @@ nlohmann::json to_json(const FitReport::Parameters& p) {
           {"facing_cells", robust && e.facing_cells},
           {"min_facing", e.min_facing},
           {"curvature_correction", robust && e.curvature_correction},
+          {"turned_face_rounds", robust ? e.turned_face_rounds : 0u},
           {"cones", e.cones},
           {"generators", e.generators},
           {"alpha_max", e.alpha_max},
@@ -51,10 +52,18 @@ nlohmann::json to_json(const FitReport::Evolution& e) {
                           {"error_seconds", r.error_seconds},
                           {"guard_seconds", r.guard_seconds},
                           {"held_back_vertices", r.held_back_vertices}});
-  return {{"initial_error_level", e.initial_error_level},
-          {"iterations", iterations},
-          {"stop_reason", e.stop_reason},
-          {"final_error_level", e.final_error_level()}};
+  nlohmann::json j = {{"initial_error_level", e.initial_error_level},
+                      {"iterations", iterations},
+                      {"stop_reason", e.stop_reason},
+                      {"final_error_level", e.final_error_level()}};
+  if (e.turned_faces)
+    j["turned_faces"] = {{"faces_before", e.turned_faces->faces_before},
+                         {"faces_after", e.turned_faces->faces_after},
+                         {"area_fraction_before", e.turned_faces->area_before},
+                         {"area_fraction_after", e.turned_faces->area_after},
+                         {"rounds", e.turned_faces->rounds},
+                         {"settle_iterations", e.turned_faces->settle_iterations}};
+  return j;
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "evolution/evolve.h"
+#include "evolution/turned_face_smoothing.h"
 #include "metrics/mesh_metrics.h"
 #include "metrics/verdict.h"
 #include "pipeline/fit_options.h"
@@ -47,6 +48,8 @@ struct FitReport {
     double initial_error_level = 0;
     std::vector<IterationRecord> iterations;
     std::string stop_reason;
+    //! Robust mode on a scan with normals: the faces turned against them, smoothed after the evolution.
+    std::optional<TurnedFaceSmoothing> turned_faces;
     double final_error_level() const {
       return iterations.empty() ? initial_error_level : iterations.back().error_level;
     }

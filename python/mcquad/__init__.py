@@ -204,6 +204,7 @@ def fit(
     facing_cells: bool = True,
     min_facing: float = 0.7,
     curvature_correction: bool = True,
+    turned_face_rounds: int = 20,
     iterations: int = 20,
     tolerance: float = 0.0,
     seed: int = 1,
@@ -259,6 +260,8 @@ def fit(
             normal for a ray to hit the cell (-1 to 0.95).
         curvature_correction: robust mode: correct each sample's projection by the mesh's curvature at the
             vertex, so vertices settle on a curved surface and not inside it.
+        turned_face_rounds: robust mode, on a scan with normals: at most this many rounds of smoothing the
+            faces turned against the scan's normals after the evolution (0: off).
         iterations: maximal number of iterations.
         tolerance: stop when the error level improves by less than this fraction (0: never).
         seed: random seed; the same seed gives the same mesh, bit for bit, as ``mcquad fit --seed``.

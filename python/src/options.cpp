@@ -86,6 +86,7 @@ const FieldTable<FitOptions>& fit_fields() {
       {"facing_cells", nested(&O::evolution, &E::facing_cells)},
       {"min_facing", nested(&O::evolution, &E::min_facing)},
       {"curvature_correction", nested(&O::evolution, &E::curvature_correction)},
+      {"turned_face_rounds", nested(&O::evolution, &E::turned_face_rounds)},
       {"iterations", nested(&O::evolution, &E::iterations)},
       {"tolerance", nested(&O::evolution, &E::tolerance)},
       {"seed", nested(&O::evolution, &E::seed)},

@@ -9,6 +9,7 @@
 #include "evolution/evolution_backend.h"
 #include "evolution/evolve.h"
 #include "evolution/serial_backend.h"
+#include "evolution/turned_face_smoothing.h"
 #include "helpers.h"
 #include "metrics/surface_distance.h"
 #include "pipeline/fit.h"
@@ -67,6 +68,20 @@ struct Fixture {
     EvolutionParameters p = parameters;
     p.mode = mode;
     return evolve(backend, arrays, p).positions;
+  }
+
+  //! What a fit leaves: evolve_on, then in robust mode the smoothing of the
+  //! faces turned against the scan's normals, as pipeline/fit.cpp runs it.
+  std::vector<float> fit_on(EvolutionBackend& backend, EvolutionParameters::Mode mode) const {
+    std::vector<float> positions = evolve_on(backend, mode);
+    if (mode != EvolutionParameters::Mode::kRobust) return positions;
+    QuadMesh mesh = initial.mesh;
+    set_positions(mesh, positions);
+    OrientedSample scan = oriented_sample(shape.cloud);
+    EvolutionParameters p = parameters;
+    p.mode = mode;
+    turn_faces_out(backend, arrays, p, scan, mesh, p.iterations);
+    return flatten_mesh(mesh).positions;
   }
 
   std::vector<float> evolve_serially(EvolutionParameters::Mode mode) const {

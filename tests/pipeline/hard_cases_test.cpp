@@ -85,17 +85,18 @@ const char* const kBackends[] = {"serial",
 #endif
 };
 
-//! Robust mode's final positions on `backend`; empty when OpenCL finds no
+//! Robust mode's fit on `backend` (the evolution and the smoothing of turned
+//! faces after it); empty when OpenCL finds no
 //! device (test::opencl_or_skip records a failure where CI requires one).
 std::vector<float> evolve_robust(const test::Fixture& f, const std::string& backend) {
-  if (backend == "serial") return f.evolve_serially(EvolutionParameters::Mode::kRobust);
+  if (backend == "serial") {
+    SerialBackend serial;
+    return f.fit_on(serial, EvolutionParameters::Mode::kRobust);
+  }
 #ifdef MCQUAD_WITH_OPENCL
   auto opencl = test::opencl_or_skip();
   if (!opencl) return {};
-  opencl->load(f.cells, f.arrays, f.regions);
-  EvolutionParameters p = f.parameters;
-  p.mode = EvolutionParameters::Mode::kRobust;
-  return evolve(*opencl, f.arrays, p).positions;
+  return f.fit_on(*opencl, EvolutionParameters::Mode::kRobust);
 #else
   return {};
 #endif

@@ -29,8 +29,8 @@ struct StandIn {
 void PrintTo(const StandIn& c, std::ostream* os) { *os << c.label; }
 
 const StandIn kStandIns[] = {
-    {"blob_limbs", "blob-limbs", 0, 0, false, false, false},
-    {"t_off_centre", "t-shape", 0.5, 0, false, true, true},
+    {"blob_limbs", "blob-limbs", 0, 0, true, false, false},
+    {"t_off_centre", "t-shape", 0.5, 0, true, true, true},
     {"t_short_ends", "t-shape", 0, 1, true, true, true},
     {"octopus_off_centre_short", "octopus", 0.5, 1, false, false, false},
 };
@@ -47,7 +47,7 @@ TEST_P(StandIns, FitStaysValidAndMeetsTheBoundsThatHold) {
   options.short_ends = c.short_ends;
   test::Fixture f(c.shape, 40000, options);
   REQUIRE_BACKEND(backend, kind);
-  std::vector<float> positions = f.evolve_on(*backend, EvolutionParameters::Mode::kRobust);
+  std::vector<float> positions = f.fit_on(*backend, EvolutionParameters::Mode::kRobust);
   QuadMesh mesh = f.initial.mesh;
   size_t folded_before = folded_edges(mesh);
   set_positions(mesh, positions);

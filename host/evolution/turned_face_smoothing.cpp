@@ -1,0 +1,95 @@
+#include "evolution/turned_face_smoothing.h"
+
+#include <algorithm>
+#include <set>
+
+#include "evolution/evolve.h"
+#include "mesh/crossing_guard.h"
+#include "mesh/folds.h"
+#include "mesh/scan_orientation.h"
+
+namespace mcquad {
+namespace {
+
+std::vector<float> mesh_positions(const QuadMesh& mesh) {
+  std::vector<float> positions;
+  positions.reserve(3 * mesh.n_vertices());
+  for (auto v : mesh.vertices())
+    for (int k = 0; k < 3; ++k) positions.push_back(float(mesh.point(v)[k]));
+  return positions;
+}
+
+//! The corners of the given faces.
+std::set<int> corners_of(const QuadMesh& mesh, const std::vector<int>& faces) {
+  std::set<int> corners;
+  for (int f : faces)
+    for (auto v : mesh.fv_range(mesh.face_handle(f))) corners.insert(v.idx());
+  return corners;
+}
+
+//! The faces round the given vertices: the only ones a move of them turns.
+std::vector<int> faces_round(const QuadMesh& mesh, const std::set<int>& vertices) {
+  std::vector<int> faces;
+  for (int v : vertices)
+    for (auto f : mesh.vf_range(mesh.vertex_handle(v))) faces.push_back(f.idx());
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  return faces;
+}
+
+}  // namespace
+
+TurnedFaceSmoothing smooth_turned_faces(QuadMesh& mesh, const MeshArrays& start, const OrientedSample& oriented,
+                                        int rounds) {
+  TurnedFaceSmoothing result;
+  if (oriented.empty()) return result;
+  ScanOrientation scan(oriented);
+  std::vector<int> turned = scan.inward_faces(mesh);
+  result.faces_before = result.faces_after = turned.size();
+  result.area_before = result.area_after = area_fraction(mesh, turned);
+  if (turned.empty() || rounds <= 0) return result;
+  CrossingGuard guard(start);
+  std::vector<float> before = mesh_positions(mesh);
+  for (; result.rounds < rounds && !turned.empty(); ++result.rounds) {
+    std::set<int> corners = corners_of(mesh, turned);
+    relax_vertices(mesh, corners);
+    std::vector<float> after = before;
+    for (int v : corners)
+      for (int k = 0; k < 3; ++k) after[3 * size_t(v) + size_t(k)] = float(mesh.point(mesh.vertex_handle(v))[k]);
+    guard.apply(before, after);
+    // The guard's shortened moves, back into the mesh (the float positions
+    // are the evolution's; the mesh then holds exactly what is written).
+    for (int v : corners)
+      mesh.set_point(mesh.vertex_handle(v),
+                     QuadMesh::Point(after[3 * size_t(v)], after[3 * size_t(v) + 1], after[3 * size_t(v) + 2]));
+    bool moved = after != before;
+    before.swap(after);
+    std::vector<int> around = faces_round(mesh, corners);
+    turned = scan.inward_faces(mesh, &around);
+    if (!moved) break;
+  }
+  result.faces_after = turned.size();
+  result.area_after = area_fraction(mesh, turned);
+  return result;
+}
+
+TurnedFaceSmoothing turn_faces_out(EvolutionBackend& backend, const MeshArrays& start,
+                                   const EvolutionParameters& parameters, const OrientedSample& oriented,
+                                   QuadMesh& mesh, unsigned first_iteration) {
+  const int rounds = int(parameters.turned_face_rounds);
+  TurnedFaceSmoothing result = smooth_turned_faces(mesh, start, oriented, rounds);
+  if (result.rounds == 0) return result;
+  backend.set_positions(mesh_positions(mesh));
+  EvolutionParameters settle = parameters;
+  settle.iterations = kSettleIterations;
+  settle.tolerance = 0;
+  set_positions(mesh, evolve(backend, start, settle, {}, first_iteration).positions);
+  TurnedFaceSmoothing again = smooth_turned_faces(mesh, start, oriented, rounds);
+  result.settle_iterations = kSettleIterations;
+  result.rounds += again.rounds;
+  result.faces_after = again.faces_after;
+  result.area_after = again.area_after;
+  return result;
+}
+
+}  // namespace mcquad

@@ -1,0 +1,131 @@
+// Robust mode's smoothing of the faces turned against the scan's normals
+// after the evolution (evolution/turned_face_smoothing.h), through the whole
+// fit as a user runs it, on issue 20's junctions: measured against the true
+// surface, not against the scan's normals the smoothing itself looks at.
+#include <gtest/gtest.h>
+
+#include "evolution/evolution_fixture.h"
+#include "evolution/turned_face_smoothing.h"
+#include "generate/true_surface_distance.h"
+#include "mesh/face_intersections.h"
+#include "mesh/folds.h"
+#include "mesh/quad_shape.h"
+#include "metrics/surface_distance.h"
+
+namespace mcquad {
+namespace {
+
+struct Junction {
+  const char* label;
+  const char* shape;
+  int arms;
+  double angle_degrees;
+  //! Whether issue 20's bound holds: at most 0.1 % of the area facing
+  //! against the true surface. Not yet on the skew 10 (0.101 %) nor the 30
+  //! degree fan (0.12 %), docs/HARD_CASES.md.
+  bool within_bound;
+};
+
+void PrintTo(const Junction& c, std::ostream* os) { *os << c.label; }
+
+//! Junctions whose creases leave 0.2-1.1 % of the area turned without the
+//! smoothing (docs/HARD_CASES.md).
+const Junction kJunctions[] = {{"planar_5", "planar-star", 5, 0, true},
+                               {"skew_8", "star", 8, 0, true},
+                               {"skew_10", "star", 10, 0, false},
+                               {"fan_30", "fan", 4, 30, false}};
+
+struct Fitted {
+  FitResult fit;
+  TrueSurfaceDistance truth;
+  double coverage_p95 = 0;
+};
+
+Fitted fit(const GeneratedShape& shape, BackendKind backend, unsigned turned_face_rounds) {
+  FitOptions options;
+  options.backend = backend;
+  options.evolution.turned_face_rounds = turned_face_rounds;
+  Fitted f{run_fit(FitInput{shape.cloud, shape.skeleton}, options), {}, 0};
+  f.truth = measure_true_surface_distance(f.fit.mesh, shape.surface);
+  f.coverage_p95 = cloud_to_mesh_relative_to_local_radius(f.fit.mesh, shape.cloud, shape.surface).p95;
+  return f;
+}
+
+class TurnedFaces : public ::testing::TestWithParam<std::tuple<Junction, BackendKind>> {};
+
+//! Without the smoothing the creases keep more than issue 20's 0.1 % of the
+//! area turned against the true surface; with it they keep at most half of
+//! what they had (and at most 0.1 % where that holds), with no face pair
+//! crossing, no fold, no quad under the guard's least scaled Jacobian, and
+//! the cloud still covered.
+TEST_P(TurnedFaces, SmoothingTurnsTheCreasesFacesOut) {
+  const auto& [c, kind] = GetParam();
+  REQUIRE_BACKEND(device_found, kind);  // skips, or fails where CI requires an OpenCL device
+  ShapeOptions options;
+  options.arms = c.arms;
+  options.angle_degrees = c.angle_degrees;
+  GeneratedShape shape = test::small_shape(c.shape, 40000, options);
+  Fitted off = fit(shape, kind, 0);
+  Fitted on = fit(shape, kind, EvolutionParameters().turned_face_rounds);
+  EXPECT_GT(off.truth.inward_area_fraction, 0.001) << "a case the smoothing has nothing to do on proves nothing";
+  EXPECT_FALSE(off.fit.report.evolution->turned_faces.has_value());
+  ASSERT_TRUE(on.fit.report.evolution->turned_faces.has_value());
+  const TurnedFaceSmoothing& smoothing = *on.fit.report.evolution->turned_faces;
+  EXPECT_LT(smoothing.faces_after, smoothing.faces_before);
+  EXPECT_LT(smoothing.area_after, smoothing.area_before);
+  // Measured against the true surface: at least halved, and within the bound where that holds.
+  EXPECT_LE(on.truth.inward_area_fraction, 0.5 * off.truth.inward_area_fraction);
+  if (c.within_bound) {
+    EXPECT_LE(on.truth.inward_area_fraction, 0.001) << "share of the area facing against the true surface";
+  }
+  EXPECT_EQ(intersecting_face_pairs(on.fit.mesh).size(), 0u);
+  EXPECT_EQ(folded_edges(on.fit.mesh), 0u);
+  EXPECT_GE(measure_quad_shape(on.fit.mesh).min_scaled_jacobian, 0.3 - 1e-3);
+  EXPECT_LE(on.coverage_p95, 0.05);
+  // The creases come out a little rounded, no more.
+  EXPECT_LE(on.truth.relative.mean, off.truth.relative.mean + 0.002);
+}
+
+INSTANTIATE_TEST_SUITE_P(Issue20, TurnedFaces,
+                         ::testing::Combine(::testing::ValuesIn(kJunctions),
+                                            ::testing::ValuesIn(test::backend_kinds())),
+                         [](const auto& test_info) {
+                           return std::string(std::get<0>(test_info.param).label) +
+                                  (std::get<1>(test_info.param) == BackendKind::kSerial ? "_serial" : "_opencl");
+                         });
+
+//! Without normals there is nothing to tell a turned face by: the mesh is
+//! left as it is, and the report says nothing of it.
+TEST(TurnedFaceSmoothing, LeavesAMeshAloneWithoutTheScansNormals) {
+  test::Fixture f("t-shape", 5000);
+  QuadMesh mesh = f.initial.mesh;
+  TurnedFaceSmoothing result = smooth_turned_faces(mesh, f.arrays, OrientedSample(), 20);
+  EXPECT_EQ(result.rounds, 0);
+  EXPECT_EQ(result.faces_before, 0u);
+  for (auto v : mesh.vertices()) EXPECT_EQ(mesh.point(v), f.initial.mesh.point(v));
+}
+
+//! Faces turned against the scan get smoothed, and a mesh that faces out
+//! everywhere is not touched.
+TEST(TurnedFaceSmoothing, TouchesOnlyTurnedFaces) {
+  test::Fixture f("t-shape", 5000);
+  OrientedSample scan = oriented_sample(f.shape.cloud);
+  ASSERT_FALSE(scan.empty());
+  QuadMesh mesh = f.initial.mesh;
+  TurnedFaceSmoothing untouched = smooth_turned_faces(mesh, f.arrays, scan, 20);
+  EXPECT_EQ(untouched.faces_before, 0u) << "the rough mesh faces out everywhere";
+  EXPECT_EQ(untouched.rounds, 0);
+  for (auto v : mesh.vertices()) EXPECT_EQ(mesh.point(v), f.initial.mesh.point(v));
+  // The same mesh against a scan whose normals all point in: every face is
+  // turned, and the guard lets no round turn one more than 90 degrees.
+  OrientedSample inverted = scan;
+  for (auto& n : inverted.normals) n = -n;
+  TurnedFaceSmoothing all = smooth_turned_faces(mesh, f.arrays, inverted, 3);
+  EXPECT_EQ(all.faces_before, mesh.n_faces());
+  EXPECT_EQ(all.rounds, 3);
+  EXPECT_EQ(intersecting_face_pairs(mesh).size(), 0u);
+  EXPECT_EQ(folded_edges(mesh), 0u);
+}
+
+}  // namespace
+}  // namespace mcquad
