@@ -6,7 +6,6 @@
 #include "evolution/evolve.h"
 #include "mesh/crossing_guard.h"
 #include "mesh/folds.h"
-#include "mesh/scan_orientation.h"
 
 namespace mcquad {
 namespace {
@@ -39,11 +38,10 @@ std::vector<int> faces_round(const QuadMesh& mesh, const std::set<int>& vertices
 
 }  // namespace
 
-TurnedFaceSmoothing smooth_turned_faces(QuadMesh& mesh, const MeshArrays& start, const OrientedSample& oriented,
+TurnedFaceSmoothing smooth_turned_faces(QuadMesh& mesh, const MeshArrays& start, const ScanOrientation& scan,
                                         int rounds) {
   TurnedFaceSmoothing result;
-  if (oriented.empty()) return result;
-  ScanOrientation scan(oriented);
+  if (scan.empty()) return result;
   std::vector<int> turned = scan.inward_faces(mesh);
   result.faces_before = result.faces_after = turned.size();
   result.area_before = result.area_after = area_fraction(mesh, turned);
@@ -74,17 +72,17 @@ TurnedFaceSmoothing smooth_turned_faces(QuadMesh& mesh, const MeshArrays& start,
 }
 
 TurnedFaceSmoothing turn_faces_out(EvolutionBackend& backend, const MeshArrays& start,
-                                   const EvolutionParameters& parameters, const OrientedSample& oriented,
-                                   QuadMesh& mesh, unsigned first_iteration) {
+                                   const EvolutionParameters& parameters, const ScanOrientation& scan, QuadMesh& mesh,
+                                   unsigned first_iteration) {
   const int rounds = int(parameters.turned_face_rounds);
-  TurnedFaceSmoothing result = smooth_turned_faces(mesh, start, oriented, rounds);
+  TurnedFaceSmoothing result = smooth_turned_faces(mesh, start, scan, rounds);
   if (result.rounds == 0) return result;
   backend.set_positions(mesh_positions(mesh));
   EvolutionParameters settle = parameters;
   settle.iterations = kSettleIterations;
   settle.tolerance = 0;
   set_positions(mesh, evolve(backend, start, settle, {}, first_iteration).positions);
-  TurnedFaceSmoothing again = smooth_turned_faces(mesh, start, oriented, rounds);
+  TurnedFaceSmoothing again = smooth_turned_faces(mesh, start, scan, rounds);
   result.settle_iterations = kSettleIterations;
   result.rounds += again.rounds;
   result.faces_after = again.faces_after;

@@ -2,11 +2,11 @@
 
 #include <cstddef>
 
-#include "core/point_cloud.h"
 #include "core/quad_mesh.h"
 #include "evolution/evolution_backend.h"
 #include "evolution/evolution_parameters.h"
 #include "mesh/mesh_arrays.h"
+#include "mesh/scan_orientation.h"
 
 namespace mcquad {
 
@@ -31,7 +31,7 @@ struct TurnedFaceSmoothing {
 //! over. It stops when no face faces inward, after `rounds` rounds, or when
 //! the guard holds every move back. Creases come out slightly rounded
 //! (docs/DESIGN.md, "Turned faces in creases", has the measurements).
-TurnedFaceSmoothing smooth_turned_faces(QuadMesh& mesh, const MeshArrays& start, const OrientedSample& oriented,
+TurnedFaceSmoothing smooth_turned_faces(QuadMesh& mesh, const MeshArrays& start, const ScanOrientation& scan,
                                         int rounds);
 
 //! Evolution steps after the first smoothing pass (turn_faces_out).
@@ -47,7 +47,7 @@ constexpr unsigned kSettleIterations = 3;
 //! turned area but let the cloud -> mesh 95th percentile grow by a third;
 //! settling keeps the first and takes back the second (docs/DESIGN.md).
 TurnedFaceSmoothing turn_faces_out(EvolutionBackend& backend, const MeshArrays& start,
-                                   const EvolutionParameters& parameters, const OrientedSample& oriented,
-                                   QuadMesh& mesh, unsigned first_iteration);
+                                   const EvolutionParameters& parameters, const ScanOrientation& scan, QuadMesh& mesh,
+                                   unsigned first_iteration);
 
 }  // namespace mcquad

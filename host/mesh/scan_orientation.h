@@ -19,10 +19,14 @@ class ScanOrientation {
   //! nothing but which of two equally near points is taken; spatial order
   //! (sort_spatially) builds the index 3x faster.
   explicit ScanOrientation(const OrientedSample& sample);
+  ScanOrientation(OrientedSample&&) = delete;  // it would outlive a temporary sample
 
   //! Whether face `face`'s normal points against the scan's (false where the
   //! sample is empty).
   bool faces_inward(const QuadMesh& mesh, int face) const;
+
+  //! Whether there are no normals to tell inward by.
+  bool empty() const { return sample_.empty(); }
 
   //! The faces that face inward, in order; among `candidates` only, when given.
   std::vector<int> inward_faces(const QuadMesh& mesh, const std::vector<int>* candidates = nullptr) const;

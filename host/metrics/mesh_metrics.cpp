@@ -21,7 +21,7 @@ std::vector<size_t> largest_first(const std::vector<double>& values, size_t coun
 }  // namespace
 
 QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, const CellTree& cells,
-                               const SkeletonGraph* skeleton, const OrientedSample* oriented) {
+                               const SkeletonGraph* skeleton, const ScanOrientation* scan) {
   QualityMetrics m;
   m.statistics = mesh_statistics(mesh);
   std::vector<double> off_cloud = mesh_to_cloud_distances(mesh, cells);
@@ -41,10 +41,9 @@ QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, co
     for (int k = 0; k < 3; ++k) positions.push_back(float(mesh.point(v)[k]));
   m.error_level = mean_vertex_error(cells, positions);
   m.cloud_spacing = cells.point_spacing;
-  if ((oriented && !oriented->empty()) || skeleton) {
-    bool by_normals = oriented && !oriented->empty();
-    std::vector<int> inward =
-        by_normals ? faces_against_normals(mesh, *oriented) : inward_face_indices(mesh, *skeleton);
+  if ((scan && !scan->empty()) || skeleton) {
+    bool by_normals = scan && !scan->empty();
+    std::vector<int> inward = by_normals ? scan->inward_faces(mesh) : inward_face_indices(mesh, *skeleton);
     m.inward_reference = by_normals ? "scan normals" : "skeleton";
     m.inward_faces = long(inward.size());
     m.inward_area_fraction = area_fraction(mesh, inward);

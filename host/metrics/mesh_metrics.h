@@ -9,6 +9,7 @@
 #include "core/quad_mesh.h"
 #include "mesh/folds.h"
 #include "mesh/quad_shape.h"
+#include "mesh/scan_orientation.h"
 #include "metrics/inward_faces.h"
 #include "metrics/mesh_statistics.h"
 #include "metrics/surface_distance.h"
@@ -45,10 +46,10 @@ struct QualityMetrics {
 };
 
 //! Measures a mesh against its cloud. Which faces face inward is told by the
-//! scan's own normals when `oriented` has any (the truth a user sees), else
-//! by the skeleton when given (an approximation), else not measured.
+//! scan's own normals when `scan` has any (the truth a user sees), else by
+//! the skeleton when given (an approximation), else not measured.
 QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, const CellTree& cells,
-                               const SkeletonGraph* skeleton, const OrientedSample* oriented = nullptr);
+                               const SkeletonGraph* skeleton, const ScanOrientation* scan = nullptr);
 
 nlohmann::json to_json(const QualityMetrics& metrics);
 

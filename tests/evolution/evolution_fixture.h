@@ -77,7 +77,8 @@ struct Fixture {
     if (mode != EvolutionParameters::Mode::kRobust) return positions;
     QuadMesh mesh = initial.mesh;
     set_positions(mesh, positions);
-    OrientedSample scan = oriented_sample(shape.cloud);
+    OrientedSample normals = oriented_sample(shape.cloud);
+    ScanOrientation scan(normals);
     EvolutionParameters p = parameters;
     p.mode = mode;
     turn_faces_out(backend, arrays, p, scan, mesh, p.iterations);

@@ -99,7 +99,8 @@ INSTANTIATE_TEST_SUITE_P(Issue20, TurnedFaces,
 TEST(TurnedFaceSmoothing, LeavesAMeshAloneWithoutTheScansNormals) {
   test::Fixture f("t-shape", 5000);
   QuadMesh mesh = f.initial.mesh;
-  TurnedFaceSmoothing result = smooth_turned_faces(mesh, f.arrays, OrientedSample(), 20);
+  const OrientedSample none;
+  TurnedFaceSmoothing result = smooth_turned_faces(mesh, f.arrays, ScanOrientation(none), 20);
   EXPECT_EQ(result.rounds, 0);
   EXPECT_EQ(result.faces_before, 0u);
   for (auto v : mesh.vertices()) EXPECT_EQ(mesh.point(v), f.initial.mesh.point(v));
@@ -112,7 +113,7 @@ TEST(TurnedFaceSmoothing, TouchesOnlyTurnedFaces) {
   OrientedSample scan = oriented_sample(f.shape.cloud);
   ASSERT_FALSE(scan.empty());
   QuadMesh mesh = f.initial.mesh;
-  TurnedFaceSmoothing untouched = smooth_turned_faces(mesh, f.arrays, scan, 20);
+  TurnedFaceSmoothing untouched = smooth_turned_faces(mesh, f.arrays, ScanOrientation(scan), 20);
   EXPECT_EQ(untouched.faces_before, 0u) << "the rough mesh faces out everywhere";
   EXPECT_EQ(untouched.rounds, 0);
   for (auto v : mesh.vertices()) EXPECT_EQ(mesh.point(v), f.initial.mesh.point(v));
@@ -120,7 +121,7 @@ TEST(TurnedFaceSmoothing, TouchesOnlyTurnedFaces) {
   // turned, and the guard lets no round turn one more than 90 degrees.
   OrientedSample inverted = scan;
   for (auto& n : inverted.normals) n = -n;
-  TurnedFaceSmoothing all = smooth_turned_faces(mesh, f.arrays, inverted, 3);
+  TurnedFaceSmoothing all = smooth_turned_faces(mesh, f.arrays, ScanOrientation(inverted), 3);
   EXPECT_EQ(all.faces_before, mesh.n_faces());
   EXPECT_EQ(all.rounds, 3);
   EXPECT_EQ(intersecting_face_pairs(mesh).size(), 0u);

@@ -66,7 +66,8 @@ TEST(InwardFaces, ScanNormalsDecideOverTheSkeletonInTheMetrics) {
   OrientedSample scan = cube_scan(3);
   cloud.points = scan.points;
   CellTree cells = build_cell_tree(cloud, 6);
-  QualityMetrics by_normals = measure_quality(mesh, cloud, cells, nullptr, &scan);
+  ScanOrientation orientation(scan);
+  QualityMetrics by_normals = measure_quality(mesh, cloud, cells, nullptr, &orientation);
   EXPECT_EQ(by_normals.inward_reference, "scan normals");
   EXPECT_EQ(by_normals.inward_faces, 1);
   EXPECT_NEAR(by_normals.inward_area_fraction, 1.0 / 6.0, 1e-12);
