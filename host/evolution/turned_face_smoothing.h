@@ -16,6 +16,9 @@ struct TurnedFaceSmoothing {
   double area_before = 0, area_after = 0;    //!< their share of the mesh's area
   int rounds = 0;                            //!< rounds taken, in both passes
   unsigned settle_iterations = 0;            //!< evolution steps between the passes
+  //! Coarse to fine: the smoothed coarse fit crossed itself once refined,
+  //! so the fit refined and evolved further is the one from before (pipeline/fit.cpp).
+  bool undone_for_crossings = false;
 };
 
 //! Robust mode, after the evolution, on a scan with normals: where tubes meet

@@ -9,7 +9,9 @@
 #include "core/point_index.h"
 #include "core/shared_math.h"
 #include "mesh/cloud_probe.h"
+#include "mesh/crossing_guard.h"
 #include "mesh/crossing_relaxation.h"
+#include "mesh/quad_relaxation.h"
 #include "mesh/cube_block.h"
 #include "mesh/face_intersections.h"
 #include "mesh/folds.h"
@@ -562,10 +564,12 @@ QuadMesh refined(const CoarseMesh& coarse, int levels, double junction_inflation
   // Moving back inside can fold a face in a tight crease. The unrefined
   // mesh (8 vertices round a tube) is only relaxed where it folds:
   // smoothing a crossing there would shrink whole tubes onto their bones.
-  if (levels == 0)
+  if (levels == 0) {
     relax_folds(mesh);
-  else
+  } else {
     untangle(mesh);
+    relax_poor_quads(mesh, CrossingGuard::kLeastScaledJacobian);
+  }
   return mesh;
 }
 

@@ -8,6 +8,7 @@
 #include "core/errors.h"
 #include "cells/cell_facing.h"
 #include "io/mesh_io.h"
+#include "mesh/face_intersections.h"
 #include "io/point_cloud_io.h"
 #include "io/skeleton_io.h"
 #include "pipeline/make_backend.h"
@@ -59,7 +60,7 @@ std::future<std::unique_ptr<EvolutionBackend>> start_opencl_backend(const FitOpt
 FitReport::Evolution evolve_mesh(EvolutionSetup& setup, const FitOptions& options,
                                  const EvolutionParameters& parameters, const ScanOrientation& scan, QuadMesh& mesh,
                                  StageTimer& timer, std::future<std::unique_ptr<EvolutionBackend>>& early_backend,
-                                 const std::string& stage_prefix = "") {
+                                 const std::string& stage_prefix = "", QuadMesh* unsmoothed = nullptr) {
   auto backend = timer.run(stage_prefix + "backend_setup", [&] {
     std::unique_ptr<EvolutionBackend> early = early_backend.valid() ? early_backend.get() : nullptr;
     return early ? std::move(early) : make_backend(options.backend, options.device);
@@ -80,10 +81,12 @@ FitReport::Evolution evolve_mesh(EvolutionSetup& setup, const FitOptions& option
   report.initial_error_level = evolution.initial_error_level;
   report.iterations = std::move(evolution.iterations);
   report.stop_reason = evolution.stop_reason;
-  if (parameters.mode == EvolutionParameters::Mode::kRobust && parameters.turned_face_rounds > 0 && !scan.empty())
+  if (parameters.mode == EvolutionParameters::Mode::kRobust && parameters.turned_face_rounds > 0 && !scan.empty()) {
+    if (unsmoothed) *unsmoothed = mesh;
     report.turned_faces = timer.run(stage_prefix + "turned_faces", [&] {
       return turn_faces_out(*backend, setup.arrays, parameters, scan, mesh, unsigned(report.iterations.size()));
     });
+  }
   return report;
 }
 
@@ -161,10 +164,25 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
     report.cells = FitReport::Cells{setup.cells.cell_count(), setup.cells.node_count(), setup.cells.depth,
                                     double(setup.cells.byte_size()) / 1e6, facing_fraction(setup.cells)};
   if (options.evolve && setup.initial.finer_levels > 0) {
+    QuadMesh unsmoothed;
     report.coarse_evolution =
-        evolve_mesh(setup, options, parameters, *scan, result.mesh, timer, early_backend, "coarse_");
+        evolve_mesh(setup, options, parameters, *scan, result.mesh, timer, early_backend, "coarse_", &unsmoothed);
     timer.run("refine_fitted", [&] {
       refine_fitted_mesh(result.mesh, setup.initial.finer_levels);
+      // Refined, the smoothed coarse fit can cross where the untangling
+      // cannot part it (the real armadillo's finer fit: 25 pairs), and the
+      // guard keeps what it starts from; the fit before the smoothing is
+      // refined too then, and the one with fewer crossing pairs goes on.
+      if (report.coarse_evolution->turned_faces && report.coarse_evolution->turned_faces->rounds > 0) {
+        size_t crossings = intersecting_face_pairs(result.mesh).size();
+        if (crossings > 0) {
+          refine_fitted_mesh(unsmoothed, setup.initial.finer_levels);
+          if (intersecting_face_pairs(unsmoothed).size() < crossings) {
+            result.mesh = unsmoothed;
+            report.coarse_evolution->turned_faces->undone_for_crossings = true;
+          }
+        }
+      }
       setup.arrays = flatten_mesh(result.mesh);
       setup.regions = build_skeleton_regions(setup.initial.skeleton, setup.cells, setup.arrays, setup.median_radius);
       return 0;

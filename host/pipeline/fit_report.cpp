@@ -62,7 +62,8 @@ nlohmann::json to_json(const FitReport::Evolution& e) {
                          {"area_fraction_before", e.turned_faces->area_before},
                          {"area_fraction_after", e.turned_faces->area_after},
                          {"rounds", e.turned_faces->rounds},
-                         {"settle_iterations", e.turned_faces->settle_iterations}};
+                         {"settle_iterations", e.turned_faces->settle_iterations},
+                         {"undone_for_crossings", e.turned_faces->undone_for_crossings}};
   return j;
 }
 

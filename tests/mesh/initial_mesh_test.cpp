@@ -5,6 +5,7 @@
 #include "mesh/initial_mesh.h"
 #include "mesh/junction_layout.h"
 #include "mesh/face_intersections.h"
+#include "mesh/quad_shape.h"
 #include "metrics/mesh_metrics.h"
 #include "skeleton/bone_assignment.h"
 
@@ -162,6 +163,11 @@ TEST_P(JunctionTopology, HoldsAtAnyValence) {
   });
   InitialMesh at_default = build_initial_mesh(t.graph, t.bones, t.shape.cloud, {}, c.name);
   EXPECT_EQ(intersecting_face_pairs(at_default.mesh).size(), 0u) << "at the default resolution";
+  // Issue 20 asks the fitted quads for a least scaled Jacobian of 0.2; the
+  // evolution's guard keeps each quad at least where it starts, so the start
+  // has it (the octopus's mantle had a quad at -0.01 before its poor quads
+  // were relaxed, mesh/quad_relaxation.h).
+  EXPECT_GE(measure_quad_shape(at_default.mesh).min_scaled_jacobian, 0.2);
   // Outward: with every end capped, the mesh winds once round every node.
   InitialMeshOptions capped;
   capped.ends = EndMode::kCapped;
