@@ -23,9 +23,8 @@ struct TurnedFaceSmoothing {
 
 //! Robust mode, after the evolution, on a scan with normals: where tubes meet
 //! at a narrow crease, vertices from both walls settle on the surface but
-//! the faces between them can end up turned against the scan (the far
-//! wall's points are nearer their centroids than the near wall's). Each
-//! round moves the corners of the faces that face inward
+//! the faces between them can end up turned against the scan. Each round
+//! moves the corners of the faces that face inward
 //! (mesh/scan_orientation.h) halfway to their neighbours' mean
 //! (mesh/folds.h, relax_vertices), which lifts them out of the crease's
 //! bottom and turns the faces back out; the crossing guard, started from

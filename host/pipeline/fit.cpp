@@ -8,9 +8,9 @@
 #include "core/errors.h"
 #include "cells/cell_facing.h"
 #include "io/mesh_io.h"
-#include "mesh/face_intersections.h"
 #include "io/point_cloud_io.h"
 #include "io/skeleton_io.h"
+#include "mesh/face_intersections.h"
 #include "pipeline/make_backend.h"
 #include "pipeline/prepare.h"
 #include "skeleton/skeleton_graph.h"
@@ -133,7 +133,7 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
   const bool facing = robust && options.evolution.facing_cells;
   const OrientedSample no_normals;
   // One index over the scan's normals, for the smoothing of turned faces
-  // and the verdict alike (16 ms on the knot's 413,696 points); none for
+  // and the verdict alike (about 20 ms on the knot's 413,696 points); none for
   // the initial mesh alone.
   const bool orient = options.measure || (options.evolve && robust && options.evolution.turned_face_rounds > 0);
   std::optional<ScanOrientation> scan;
