@@ -246,3 +246,18 @@ def test_the_opencl_backend_runs_from_python(t_shape):
     serial = mcquad.fit(t_shape / "t-shape.ply", t_shape / "t-shape.skeleton.obj", backend="serial", iterations=5)
     # The same per-vertex code on both: float rounding apart, the same mesh.
     np.testing.assert_allclose(result.vertices, serial.vertices, atol=1e-4)
+
+
+def test_turned_faces_are_smoothed_and_reported(tmp_path):
+    """A planar junction of five arms turns faces in its creases; robust mode smooths them after the
+    evolution (turned_face_rounds), and the report says how many there were and are."""
+    mcquad.generate("planar-star", tmp_path, points=20000, seed=1, arms=5)
+    cloud, skeleton = tmp_path / "planar-star.ply", tmp_path / "planar-star.skeleton.obj"
+    smoothed = mcquad.fit(cloud, skeleton, backend="serial")
+    turned = smoothed.report["evolution"]["turned_faces"]
+    assert turned["faces_before"] > 0
+    assert turned["faces_after"] < turned["faces_before"]
+    assert smoothed.report["parameters"]["turned_face_rounds"] == 20
+    left_alone = mcquad.fit(cloud, skeleton, backend="serial", turned_face_rounds=0)
+    assert "turned_faces" not in left_alone.report["evolution"]
+    assert left_alone.report["metrics"]["inward_area_fraction"] > smoothed.report["metrics"]["inward_area_fraction"]
