@@ -10,22 +10,6 @@
 namespace mcquad {
 namespace {
 
-std::vector<float> mesh_positions(const QuadMesh& mesh) {
-  std::vector<float> positions;
-  positions.reserve(3 * mesh.n_vertices());
-  for (auto v : mesh.vertices())
-    for (int k = 0; k < 3; ++k) positions.push_back(float(mesh.point(v)[k]));
-  return positions;
-}
-
-//! The corners of the given faces.
-std::set<int> corners_of(const QuadMesh& mesh, const std::vector<int>& faces) {
-  std::set<int> corners;
-  for (int f : faces)
-    for (auto v : mesh.fv_range(mesh.face_handle(f))) corners.insert(v.idx());
-  return corners;
-}
-
 //! The faces round the given vertices: the only ones a move of them turns.
 std::vector<int> faces_round(const QuadMesh& mesh, const std::set<int>& vertices) {
   std::vector<int> faces;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <set>
+#include <vector>
 
 #include "mesh/face_intersections.h"
 #include "mesh/folds.h"
@@ -23,10 +24,9 @@ size_t relax_crossings(QuadMesh& mesh, int rounds) {
     // Faces pinched into one point in a tight crease, or tubes through each
     // other, are not parted by smoothing: give up.
     if (pairs.empty() || round == rounds || ++since_fewest > kRoundsWithoutProgress) return pairs.size();
-    std::set<int> region;
-    for (const auto& [a, b] : pairs)
-      for (int face : {a, b})
-        for (auto v : mesh.fv_range(mesh.face_handle(face))) region.insert(v.idx());
+    std::vector<int> faces;
+    for (const auto& [a, b] : pairs) faces.insert(faces.end(), {a, b});
+    std::set<int> region = corners_of(mesh, faces);
     // Smoothing only the crossing faces' corners pulls them into their
     // neighbours; their rings give way with them.
     grow_region(mesh, region, 1 + std::min(5, round / 10));

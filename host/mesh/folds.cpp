@@ -36,6 +36,13 @@ void relax_vertices(QuadMesh& mesh, const std::set<int>& region) {
   for (const auto& [i, p] : moved) mesh.set_point(mesh.vertex_handle(i), p);
 }
 
+std::set<int> corners_of(const QuadMesh& mesh, const std::vector<int>& faces) {
+  std::set<int> corners;
+  for (int f : faces)
+    for (auto v : mesh.fv_range(mesh.face_handle(f))) corners.insert(v.idx());
+  return corners;
+}
+
 void grow_region(const QuadMesh& mesh, std::set<int>& region, int rings) {
   for (int ring = 0; ring < rings; ++ring) {
     std::set<int> grown = region;

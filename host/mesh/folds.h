@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <set>
+#include <vector>
 
 #include "core/quad_mesh.h"
 
@@ -24,6 +25,9 @@ size_t folded_edges(const QuadMesh& mesh);
 //! One round of umbrella smoothing: every interior vertex of `region` moves
 //! halfway to its neighbours' mean (all from the positions before the round).
 void relax_vertices(QuadMesh& mesh, const std::set<int>& region);
+
+//! The corners of the given faces, as a region to relax.
+std::set<int> corners_of(const QuadMesh& mesh, const std::vector<int>& faces);
 
 //! Adds `rings` rings of edge neighbours round `region`.
 void grow_region(const QuadMesh& mesh, std::set<int>& region, int rings);

@@ -6,12 +6,8 @@ namespace mcquad {
 
 MeshArrays flatten_mesh(const QuadMesh& mesh) {
   MeshArrays arrays;
-  arrays.positions.reserve(3 * mesh.n_vertices());
-  for (auto v : mesh.vertices()) {
-    const auto& p = mesh.point(v);
-    arrays.positions.insert(arrays.positions.end(), {float(p[0]), float(p[1]), float(p[2])});
-    arrays.boundary.push_back(mesh.is_boundary(v) ? 1u : 0u);
-  }
+  arrays.positions = mesh_positions(mesh);
+  for (auto v : mesh.vertices()) arrays.boundary.push_back(mesh.is_boundary(v) ? 1u : 0u);
   std::vector<uint32_t> counts(mesh.n_vertices() + 1, 0);
   for (auto f : mesh.faces()) {
     if (mesh.valence(f) != 4)
@@ -30,6 +26,16 @@ MeshArrays flatten_mesh(const QuadMesh& mesh) {
   for (size_t f = 0; f < arrays.face_count(); ++f)
     for (int k = 0; k < 4; ++k) arrays.vertex_faces[cursor[arrays.faces[4 * f + k]]++] = uint32_t(f);
   return arrays;
+}
+
+std::vector<float> mesh_positions(const QuadMesh& mesh) {
+  std::vector<float> positions;
+  positions.reserve(3 * mesh.n_vertices());
+  for (auto v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
+    positions.insert(positions.end(), {float(p[0]), float(p[1]), float(p[2])});
+  }
+  return positions;
 }
 
 void set_positions(QuadMesh& mesh, const std::vector<float>& positions) {

@@ -30,6 +30,9 @@ inline device::mcq_topology topology_view(const MeshArrays& mesh) {
 //! Flattens an all-quad mesh (UnsupportedError for any other face).
 MeshArrays flatten_mesh(const QuadMesh& mesh);
 
+//! The mesh's positions, flat, as floats (3 per vertex).
+std::vector<float> mesh_positions(const QuadMesh& mesh);
+
 //! Copies flat positions back into the mesh (same vertex order).
 void set_positions(QuadMesh& mesh, const std::vector<float>& positions);
 

@@ -15,14 +15,8 @@ constexpr int kRoundsWithoutProgress = 10;
 std::vector<int> poor_quads(const QuadMesh& mesh, double least) {
   std::vector<int> poor;
   for (auto f : mesh.faces()) {
-    Eigen::Vector3d corners[4];
-    int k = 0;
-    for (auto v : mesh.fv_range(f)) {
-      if (k == 4) break;
-      const auto& p = mesh.point(v);
-      corners[k++] = Eigen::Vector3d(p[0], p[1], p[2]);
-    }
-    if (k == 4 && scaled_jacobian(corners) < least) poor.push_back(f.idx());
+    std::vector<Eigen::Vector3d> corners = face_corners(mesh, f);
+    if (corners.size() == 4 && scaled_jacobian(corners.data()) < least) poor.push_back(f.idx());
   }
   return poor;
 }
@@ -38,9 +32,7 @@ size_t relax_poor_quads(QuadMesh& mesh, double least, int rounds) {
   // Each poor quad's corners and their ring are smoothed; where that makes
   // faces cross, the corners alone; where even that does, nothing more.
   auto smooth = [&](int rings) {
-    std::set<int> region;
-    for (int f : poor)
-      for (auto v : mesh.fv_range(mesh.face_handle(f))) region.insert(v.idx());
+    std::set<int> region = corners_of(mesh, poor);
     grow_region(mesh, region, rings);
     std::vector<QuadMesh::Point> kept;  // relax_folds may move vertices beyond the region
     for (auto v : mesh.vertices()) kept.push_back(mesh.point(v));

@@ -3,6 +3,7 @@
 #include <numeric>
 
 #include "mesh/face_intersections.h"
+#include "mesh/mesh_arrays.h"
 
 namespace mcquad {
 namespace {
@@ -35,11 +36,7 @@ QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, co
   for (size_t k : largest_first(uncovered, QualityMetrics::kMaxSites))
     m.uncovered_sites.emplace_back(cloud.points[k * stride].cast<double>());
   m.cloud_to_mesh = summarize_distances(std::move(uncovered));
-  std::vector<float> positions;
-  positions.reserve(3 * mesh.n_vertices());
-  for (auto v : mesh.vertices())
-    for (int k = 0; k < 3; ++k) positions.push_back(float(mesh.point(v)[k]));
-  m.error_level = mean_vertex_error(cells, positions);
+  m.error_level = mean_vertex_error(cells, mesh_positions(mesh));
   m.cloud_spacing = cells.point_spacing;
   if ((scan && !scan->empty()) || skeleton) {
     bool by_normals = scan && !scan->empty();

@@ -82,7 +82,7 @@ struct Fixture {
     EvolutionParameters p = parameters;
     p.mode = mode;
     turn_faces_out(backend, arrays, p, scan, mesh, p.iterations);
-    return flatten_mesh(mesh).positions;
+    return mesh_positions(mesh);
   }
 
   std::vector<float> evolve_serially(EvolutionParameters::Mode mode) const {
