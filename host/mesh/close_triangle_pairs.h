@@ -11,35 +11,59 @@ namespace mcquad {
 
 //! The intersecting face pairs of one mesh as its vertices move, step after
 //! step, without a new broad phase each time: a Verlet list, as molecular
-//! dynamics keeps for pairs of atoms. The list holds the triangle pairs
-//! (sharing no vertex, of different faces) whose boxes were within `gap`
-//! per axis at some reference positions. While no vertex has moved more
-//! than about gap / 2 along any axis from there, every pair whose boxes
-//! overlap now is on the list, so testing the list finds exactly what
-//! intersecting_face_pairs finds; once one has, the list is built again at
-//! the positions of the call. On the knot's mesh most of the evolution's
-//! steps move every vertex far less than that (docs/PERFORMANCE.md).
+//! dynamics keeps for pairs of atoms. Every vertex has a reference position;
+//! the list holds the triangle pairs (sharing no vertex, of different faces)
+//! whose boxes are within `gap` per axis at the reference positions. While
+//! no vertex has moved more than about gap / 2 along any axis from its own
+//! reference, every pair whose boxes overlap now is on the list, so testing
+//! the list finds exactly what intersecting_face_pairs finds. The vertices
+//! that have gone further take their positions as new references and only
+//! their triangles' pairs are looked for again (the smoothing of a few
+//! turned faces, or the held-back vertices of a fine mesh, move a few
+//! vertices far while the rest stay); when they are many, the whole list is
+//! built again. On the knot's mesh most of the evolution's steps move every
+//! vertex far less than that (docs/PERFORMANCE.md).
 class CloseTrianglePairs {
  public:
   explicit CloseTrianglePairs(double gap) : gap_(gap) {}
 
+  //! The usual gap: half the triangles' mean edge length. The list then
+  //! holds about a triangle's ring of neighbours, and its pairs last while
+  //! the vertices move less than a quarter of an edge (docs/PERFORMANCE.md).
+  static double half_mean_edge(const MeshTriangles& triangles);
+
   //! As intersecting_face_pairs(triangles, only_faces); every call's
   //! triangles must have the same corners (one mesh), positions may differ.
+  //! With `only_faces` the test costs in the pairs of those faces' triangles
+  //! (the crossing guard's later rounds look at a few faces of a large mesh).
   std::vector<std::pair<int, int>> intersecting_face_pairs(const MeshTriangles& triangles,
                                                            const std::vector<char>* only_faces = nullptr);
 
-  //! How many times the list has been built.
+  //! How many times the whole list has been built, and how many times the
+  //! pairs of some of its triangles have been looked for again.
   size_t builds() const { return builds_; }
+  size_t refreshes() const { return refreshes_; }
 
  private:
   double gap_;
-  std::vector<Eigen::Vector3d> reference_;       //!< positions the list was built at
-  std::vector<std::pair<int, int>> candidates_;  //!< triangle pairs, a < b
-  size_t builds_ = 0;
+  //! The mesh's triangles at the reference positions.
+  MeshTriangles reference_;
+  //! Per triangle, the triangles it is listed with (each pair under both).
+  std::vector<std::vector<uint32_t>> partners_;
+  //! Per vertex, its triangles: vertex_triangles_[vertex_triangle_offsets_[v] .. [v + 1]).
+  std::vector<uint32_t> vertex_triangle_offsets_, vertex_triangles_;
+  size_t builds_ = 0, refreshes_ = 0;
 
-  //! Whether some vertex has gone too far from reference_ for the list.
-  bool moved_too_far(const MeshTriangles& triangles) const;
+  //! Brings the list up to `triangles`' positions: nothing, the pairs of the
+  //! triangles round the vertices gone too far, or all of it.
+  void update(const MeshTriangles& triangles);
   void build(const MeshTriangles& triangles);
+  //! Looks again for the pairs of the `stale` triangles (per triangle,
+  //! nonzero), at the reference positions.
+  void refresh(const std::vector<char>& stale);
+  //! Adds the pairs within the gap at the reference positions of which at
+  //! least one triangle is `wanted` (null: all).
+  void add_pairs(const std::vector<char>* wanted);
 };
 
 }  // namespace mcquad

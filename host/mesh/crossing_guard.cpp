@@ -30,19 +30,6 @@ void drop_single_faces(std::vector<std::pair<int, int>>& defects) {
                 defects.end());
 }
 
-//! Half the mean edge length: the list of close triangle pairs then holds
-//! about a triangle's ring of neighbours, and lasts while the vertices move
-//! less than a quarter of an edge (docs/PERFORMANCE.md).
-double close_pair_gap(const MeshArrays& mesh) {
-  double total = 0;
-  for (size_t f = 0; f < mesh.face_count(); ++f)
-    for (size_t k = 0; k < 4; ++k)
-      total +=
-          (position(mesh.positions, mesh.faces[4 * f + k]) - position(mesh.positions, mesh.faces[4 * f + (k + 1) % 4]))
-              .norm();
-  return mesh.face_count() > 0 ? 0.5 * total / double(4 * mesh.face_count()) : 0.0;
-}
-
 bool vertex_moved(const std::vector<float>& before, const std::vector<float>& after, uint32_t v) {
   size_t i = 3 * size_t(v);
   return before[i] != after[i] || before[i + 1] != after[i + 1] || before[i + 2] != after[i + 2];
@@ -50,20 +37,29 @@ bool vertex_moved(const std::vector<float>& before, const std::vector<float>& af
 
 }  // namespace
 
-CrossingGuard::CrossingGuard(const MeshArrays& mesh) : mesh_(mesh), close_pairs_(close_pair_gap(mesh)) {
+CrossingGuard::CrossingGuard(const MeshArrays& mesh)
+    : mesh_(mesh),
+      triangles_(triangulate(mesh.faces, mesh.positions)),
+      close_pairs_(CloseTrianglePairs::half_mean_edge(triangles_)) {
   // Faces across each edge, from the vertex-face lists (no map of edges: at
   // millions of faces that would cost more than the mesh).
+  std::vector<std::vector<uint32_t>> across(mesh.face_count());
   for (size_t f = 0; f < mesh.face_count(); ++f)
     for (size_t k = 0; k < 4; ++k) {
       uint32_t a = mesh.faces[4 * f + k], b = mesh.faces[4 * f + (k + 1) % 4];
       for (uint32_t j = mesh.vertex_face_offsets[a]; j < mesh.vertex_face_offsets[a + 1]; ++j) {
         uint32_t g = mesh.vertex_faces[j];
-        if (g <= f) continue;  // each pair once, from its lower face
         const uint32_t* q = &mesh.faces[4 * size_t(g)];
-        if (std::find(q, q + 4, b) != q + 4) adjacent_faces_.emplace_back(int(f), int(g));
+        if (g != f && std::find(q, q + 4, b) != q + 4) across[f].push_back(g);
       }
     }
-  std::sort(adjacent_faces_.begin(), adjacent_faces_.end());
+  neighbour_offsets_.push_back(0);
+  for (auto& faces : across) {
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    neighbours_.insert(neighbours_.end(), faces.begin(), faces.end());
+    neighbour_offsets_.push_back(uint32_t(neighbours_.size()));
+  }
   for (size_t f = 0; f < mesh.face_count(); ++f) {
     Eigen::Vector3d n = face_normal(mesh, mesh.positions, f);
     initial_normals_.insert(initial_normals_.end(), {float(n.x()), float(n.y()), float(n.z())});
@@ -74,30 +70,55 @@ CrossingGuard::CrossingGuard(const MeshArrays& mesh) : mesh_(mesh), close_pairs_
   raise_jacobian_floors(mesh.positions);
   known_ = defects(mesh.positions);
   drop_single_faces(known_);
+  known_at_ = mesh.positions;
 }
 
 std::vector<CrossingGuard::Defect> CrossingGuard::defects(const std::vector<float>& positions,
                                                           const std::vector<char>* only_faces) const {
-  auto wanted = [&](int f) { return !only_faces || (*only_faces)[size_t(f)]; };
-  std::vector<Defect> found = close_pairs_.intersecting_face_pairs(triangulate(mesh_.faces, positions), only_faces);
-  // Per face, once: its normal, and whether it turned over or lost shape.
-  long faces = long(mesh_.face_count());
-  std::vector<Eigen::Vector3d> normal(static_cast<size_t>(faces));
-  std::vector<char> bad(static_cast<size_t>(faces), 0);
-#pragma omp parallel for schedule(static) if (faces > 4096)
-  for (long f = 0; f < faces; ++f) {
-    size_t i = size_t(f);
-    normal[i] = face_normal(mesh_, positions, i);
-    if (!wanted(int(f))) continue;
+  MeshTriangles triangles = triangulate(mesh_.faces, positions);
+  return find_defects(triangles, positions, only_faces);
+}
+
+std::vector<CrossingGuard::Defect> CrossingGuard::find_defects(const MeshTriangles& triangles,
+                                                               const std::vector<float>& positions,
+                                                               const std::vector<char>* only_faces) const {
+  const size_t faces = mesh_.face_count();
+  std::vector<Defect> found = close_pairs_.intersecting_face_pairs(triangles, only_faces);
+  // The faces to test, and those whose normals the fold test needs: theirs
+  // and their neighbours'.
+  std::vector<int> tested;
+  std::vector<char> needs_normal(faces, only_faces ? 0 : 1);
+  for (size_t f = 0; f < faces; ++f) {
+    if (only_faces && !(*only_faces)[f]) continue;
+    tested.push_back(int(f));
+    if (!only_faces) continue;
+    needs_normal[f] = 1;
+    for (uint32_t j = neighbour_offsets_[f]; j < neighbour_offsets_[f + 1]; ++j) needs_normal[neighbours_[j]] = 1;
+  }
+  std::vector<Eigen::Vector3d> normal(faces);
+  const long face_count = long(faces);
+#pragma omp parallel for schedule(static) if (face_count > 4096)
+  for (long f = 0; f < face_count; ++f)
+    if (needs_normal[size_t(f)]) normal[size_t(f)] = face_normal(mesh_, positions, size_t(f));
+  // Per tested face, once: whether it turned over or lost shape.
+  std::vector<char> bad(tested.size(), 0);
+  const long tested_count = long(tested.size());
+#pragma omp parallel for schedule(static) if (tested_count > 4096)
+  for (long t = 0; t < tested_count; ++t) {
+    size_t i = size_t(tested[size_t(t)]);
     Eigen::Vector3d start(initial_normals_[3 * i], initial_normals_[3 * i + 1], initial_normals_[3 * i + 2]);
     Eigen::Vector3d corners[4];
     for (size_t k = 0; k < 4; ++k) corners[k] = position(positions, mesh_.faces[4 * i + k]);
-    bad[i] = normal[i].dot(start) < 0 || scaled_jacobian(corners) < jacobian_floor_[i] - 1e-6;
+    bad[size_t(t)] = normal[i].dot(start) < 0 || scaled_jacobian(corners) < jacobian_floor_[i] - 1e-6;
   }
-  for (const auto& [a, b] : adjacent_faces_)
-    if ((wanted(a) || wanted(b)) && normals_fold(normal[size_t(a)], normal[size_t(b)])) found.emplace_back(a, b);
-  for (long f = 0; f < faces; ++f)
-    if (bad[size_t(f)]) found.emplace_back(int(f), -1);
+  for (size_t t = 0; t < tested.size(); ++t) {
+    const int f = tested[t];
+    if (bad[t]) found.emplace_back(f, -1);
+    for (uint32_t j = neighbour_offsets_[size_t(f)]; j < neighbour_offsets_[size_t(f) + 1]; ++j) {
+      const int g = int(neighbours_[j]);
+      if (normals_fold(normal[size_t(f)], normal[size_t(g)])) found.emplace_back(std::min(f, g), std::max(f, g));
+    }
+  }
   std::sort(found.begin(), found.end());
   found.erase(std::unique(found.begin(), found.end()), found.end());
   return found;
@@ -127,13 +148,29 @@ std::vector<uint32_t> CrossingGuard::apply(const std::vector<float>& before, std
     }
     return longest;
   };
-  // The first round looks at every face; later ones only at the faces
-  // around vertices just held back (a defect elsewhere was ruled out).
-  std::vector<char> dirty(mesh_.face_count(), 1), changed(mesh_.face_count(), 0);
+  // Where known_ holds for `before` (every call but one after the guard was
+  // made from other positions), the first round looks only at the faces
+  // with a corner that moved: among the others the pairs are known_'s, and
+  // a defect of theirs alone has no moved corner to hold back. Later rounds
+  // look only at the faces around vertices just held back (a defect
+  // elsewhere was ruled out).
+  const bool known_holds = known_at_ == before;
+  std::vector<char> dirty(mesh_.face_count(), known_holds ? 0 : 1), changed(mesh_.face_count(), 0);
+  if (known_holds)
+    for (uint32_t v = 0; v < mesh_.vertex_count(); ++v)
+      if (vertex_moved(before, after, v))
+        for (uint32_t j = mesh_.vertex_face_offsets[v]; j < mesh_.vertex_face_offsets[v + 1]; ++j)
+          dirty[mesh_.vertex_faces[j]] = 1;
+  for (size_t v = 0; v < mesh_.vertex_count(); ++v) triangles_.positions[v] = position(after, uint32_t(v));
   std::vector<Defect> found_first;
   for (bool first = true;; first = false) {
-    std::vector<Defect> found = defects(after, first ? nullptr : &dirty);
-    if (first) found_first = found;
+    std::vector<Defect> found = find_defects(triangles_, after, first && !known_holds ? nullptr : &dirty);
+    if (first) {
+      found_first = found;
+      if (known_holds)
+        for (const Defect& d : known_)
+          if (!dirty[size_t(d.first)] && !dirty[size_t(d.second)]) found_first.push_back(d);
+    }
     std::vector<Defect> fresh;
     std::set_difference(found.begin(), found.end(), known_.begin(), known_.end(), std::back_inserter(fresh));
     std::fill(dirty.begin(), dirty.end(), 0);
@@ -158,6 +195,7 @@ std::vector<uint32_t> CrossingGuard::apply(const std::vector<float>& before, std
       fraction[v] = fraction[v] > 0.125f ? 0.5f * fraction[v] : 0.0f;
       for (size_t i = 3 * size_t(v); i < 3 * size_t(v) + 3; ++i)
         after[i] = fraction[v] > 0.0f ? before[i] + fraction[v] * (proposed[i] - before[i]) : before[i];
+      triangles_.positions[v] = position(after, v);
       for (uint32_t j = mesh_.vertex_face_offsets[v]; j < mesh_.vertex_face_offsets[v + 1]; ++j)
         dirty[mesh_.vertex_faces[j]] = changed[mesh_.vertex_faces[j]] = 1;
     }
@@ -168,13 +206,14 @@ std::vector<uint32_t> CrossingGuard::apply(const std::vector<float>& before, std
   for (const Defect& d : found_first)
     if (!changed[size_t(d.first)] && (d.second < 0 || !changed[size_t(d.second)])) known_.push_back(d);
   if (held_back > 0) {
-    std::vector<Defect> around_changes = defects(after, &changed);
+    std::vector<Defect> around_changes = find_defects(triangles_, after, &changed);
     known_.insert(known_.end(), around_changes.begin(), around_changes.end());
   }
   drop_single_faces(known_);
   std::sort(known_.begin(), known_.end());
   known_.erase(std::unique(known_.begin(), known_.end()), known_.end());
   raise_jacobian_floors(after);
+  known_at_ = after;
   std::vector<uint32_t> held;
   for (uint32_t v = 0; v < fraction.size(); ++v)
     if (fraction[v] < 1.0f) held.push_back(v);

@@ -45,22 +45,32 @@ class CrossingGuard {
   //! defects (mesh/quad_shape.h): a corner near 180 degrees or beyond.
   static constexpr double kLeastScaledJacobian = 0.3;
   //! The defects of the mesh at `positions`, sorted; with `only_faces`,
-  //! those involving at least one of those faces.
+  //! those involving at least one of those faces (at a cost in those faces,
+  //! not in the mesh: the later rounds of apply look at a few faces).
   std::vector<Defect> defects(const std::vector<float>& positions, const std::vector<char>* only_faces = nullptr) const;
 
  private:
   const MeshArrays& mesh_;
-  std::vector<std::pair<int, int>> adjacent_faces_;  //!< faces sharing an edge, a < b
-  std::vector<float> initial_normals_;               //!< per face, unit
-  std::vector<Defect> known_;                        //!< face pairs crossing or folded at the last accepted positions
-  std::vector<double> jacobian_floor_;               //!< per face: the least scaled Jacobian it may take
-  std::vector<uint32_t> low_faces_;                  //!< faces whose floor is still under kLeastScaledJacobian
+  //! Per face, the faces across its edges: those of face f are
+  //! neighbours_[neighbour_offsets_[f] .. neighbour_offsets_[f + 1]).
+  std::vector<uint32_t> neighbour_offsets_, neighbours_;
+  //! The mesh's triangles (mesh/face_intersections.h), their positions those
+  //! apply tests.
+  MeshTriangles triangles_;
+  std::vector<float> initial_normals_;  //!< per face, unit
+  std::vector<Defect> known_;           //!< face pairs crossing or folded at known_at_
+  std::vector<float> known_at_;         //!< the positions known_ holds for
+  std::vector<double> jacobian_floor_;  //!< per face: the least scaled Jacobian it may take
+  std::vector<uint32_t> low_faces_;     //!< faces whose floor is still under kLeastScaledJacobian
   //! The crossing test's broad phase, kept from call to call while the
   //! vertices stay near (a cache: defects() gives the same answers without).
   mutable CloseTrianglePairs close_pairs_;
 
   //! Floors rise with the quads, up to kLeastScaledJacobian.
   void raise_jacobian_floors(const std::vector<float>& positions);
+  //! defects() on `triangles`, which hold `positions`.
+  std::vector<Defect> find_defects(const MeshTriangles& triangles, const std::vector<float>& positions,
+                                   const std::vector<char>* only_faces) const;
 };
 
 }  // namespace mcquad
