@@ -5,7 +5,7 @@
 #include <set>
 #include <vector>
 
-#include "mesh/face_intersections.h"
+#include "mesh/crossing_tracker.h"
 #include "mesh/folds.h"
 
 namespace mcquad {
@@ -15,8 +15,9 @@ constexpr int kRoundsWithoutProgress = 20;
 size_t relax_crossings(QuadMesh& mesh, int rounds) {
   size_t fewest = SIZE_MAX;
   int since_fewest = 0;
+  CrossingTracker crossings(mesh);  // each round smooths a few regions: look again there only
   for (int round = 0;; ++round) {
-    auto pairs = intersecting_face_pairs(mesh);
+    auto pairs = crossings.pairs(mesh);
     if (pairs.size() < fewest) {
       fewest = pairs.size();
       since_fewest = 0;

@@ -3,7 +3,7 @@
 #include <set>
 #include <vector>
 
-#include "mesh/face_intersections.h"
+#include "mesh/crossing_tracker.h"
 #include "mesh/folds.h"
 #include "mesh/quad_shape.h"
 
@@ -26,7 +26,8 @@ std::vector<int> poor_quads(const QuadMesh& mesh, double least) {
 size_t relax_poor_quads(QuadMesh& mesh, double least, int rounds) {
   std::vector<int> poor = poor_quads(mesh, least);
   if (poor.empty()) return 0;
-  const size_t crossings = intersecting_face_pairs(mesh).size(), folds = folded_edges(mesh);
+  CrossingTracker tracker(mesh);  // each round smooths round the poor quads: look again there only
+  const size_t crossings = tracker.pairs(mesh).size(), folds = folded_edges(mesh);
   size_t fewest = poor.size();
   int since_fewest = 0;
   // Each poor quad's corners and their ring are smoothed; where that makes
@@ -38,7 +39,7 @@ size_t relax_poor_quads(QuadMesh& mesh, double least, int rounds) {
     for (auto v : mesh.vertices()) kept.push_back(mesh.point(v));
     relax_vertices(mesh, region);
     if (folded_edges(mesh) > folds) relax_folds(mesh);
-    if (intersecting_face_pairs(mesh).size() <= crossings && folded_edges(mesh) <= folds) return true;
+    if (tracker.pairs(mesh).size() <= crossings && folded_edges(mesh) <= folds) return true;
     for (auto v : mesh.vertices()) mesh.set_point(v, kept[size_t(v.idx())]);
     return false;
   };
