@@ -25,7 +25,10 @@ double CloseTrianglePairs::half_mean_edge(const MeshTriangles& triangles) {
 
 void CloseTrianglePairs::update(const MeshTriangles& triangles) {
   const size_t vertices = triangles.positions.size();
-  if (reference_.positions.size() != vertices) return build(triangles);
+  if (reference_.size() != vertices || partner_offsets_.size() != triangles.size() + 1) {
+    reference_ = triangles.positions;
+    return refresh(triangles, nullptr);
+  }
   double extent = 0;
   for (const Eigen::Vector3d& p : triangles.positions) extent = std::max(extent, p.cwiseAbs().maxCoeff());
   // Two boxes that overlap now were within the two triangles' largest moves
@@ -33,67 +36,60 @@ void CloseTrianglePairs::update(const MeshTriangles& triangles) {
   // boxes are floats and so is its gap test: allow for a few roundings at
   // the coordinates' magnitude.
   const double slack = 8 * FLT_EPSILON * (extent + gap_);
-  std::vector<uint32_t> gone;
+  std::vector<char> gone(vertices, 0);
+  bool any = false;
   for (size_t v = 0; v < vertices; ++v)
-    if (2 * (triangles.positions[v] - reference_.positions[v]).cwiseAbs().maxCoeff() + slack > gap_)
-      gone.push_back(uint32_t(v));
-  if (gone.empty()) return;
+    if (2 * (triangles.positions[v] - reference_[v]).cwiseAbs().maxCoeff() + slack > gap_) {
+      gone[v] = 1, any = true;
+      reference_[v] = triangles.positions[v];
+    }
+  if (!any) return;
   std::vector<char> stale(triangles.size(), 0);
   size_t stale_count = 0;
-  for (uint32_t v : gone) {
-    reference_.positions[v] = triangles.positions[v];
-    for (uint32_t j = vertex_triangle_offsets_[v]; j < vertex_triangle_offsets_[v + 1]; ++j)
-      stale_count += !stale[vertex_triangles_[j]], stale[vertex_triangles_[j]] = 1;
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    const auto& c = triangles.corners[t];
+    stale[t] = gone[size_t(c[0])] || gone[size_t(c[1])] || gone[size_t(c[2])];
+    stale_count += size_t(stale[t]);
   }
-  if (stale_count * kMostStaleShare > triangles.size()) return build(triangles);
-  refresh(stale);
+  if (stale_count * kMostStaleShare <= triangles.size()) return refresh(triangles, &stale);
+  reference_ = triangles.positions;  // all of it again: every vertex starts afresh
+  refresh(triangles, nullptr);
 }
 
-void CloseTrianglePairs::build(const MeshTriangles& triangles) {
-  reference_ = triangles;
-  const size_t vertices = triangles.positions.size();
-  vertex_triangle_offsets_.assign(vertices + 1, 0);
-  for (const auto& corners : triangles.corners)
-    for (int v : corners) ++vertex_triangle_offsets_[size_t(v) + 1];
-  for (size_t v = 0; v < vertices; ++v) vertex_triangle_offsets_[v + 1] += vertex_triangle_offsets_[v];
-  vertex_triangles_.resize(vertex_triangle_offsets_.back());
-  std::vector<uint32_t> next(vertex_triangle_offsets_.begin(), vertex_triangle_offsets_.end() - 1);
-  for (size_t t = 0; t < triangles.size(); ++t)
-    for (int v : triangles.corners[t]) vertex_triangles_[next[size_t(v)]++] = uint32_t(t);
-  partners_.assign(triangles.size(), {});
-  add_pairs(nullptr);
-  ++builds_;
-}
-
-void CloseTrianglePairs::refresh(const std::vector<char>& stale) {
-  for (size_t t = 0; t < partners_.size(); ++t) {
-    if (!stale[t]) continue;
-    for (uint32_t p : partners_[t]) {
-      if (stale[p]) continue;
-      auto& theirs = partners_[p];
-      theirs.erase(std::find(theirs.begin(), theirs.end(), uint32_t(t)));
-    }
-    partners_[t].clear();
-  }
-  add_pairs(&stale);
-  ++refreshes_;
-}
-
-void CloseTrianglePairs::add_pairs(const std::vector<char>* wanted) {
-  TriangleTree tree(reference_);
+void CloseTrianglePairs::refresh(const MeshTriangles& triangles, const std::vector<char>* stale) {
+  const size_t count = triangles.size();
+  // The pairs of fresh triangles stay; those of stale ones are looked for at
+  // the reference positions (a tree over their boxes, for the stale ones).
+  std::vector<std::pair<uint32_t, uint32_t>> kept;
+  if (stale)
+    for (uint32_t t = 0; t < count; ++t)
+      if (!(*stale)[t])
+        for (uint32_t j = partner_offsets_[t]; j < partner_offsets_[t + 1]; ++j)
+          if (partners_[j] > t && !(*stale)[partners_[j]]) kept.emplace_back(t, partners_[j]);
+  std::vector<uint32_t>().swap(partners_);  // the old list goes before the new one is found
+  MeshTriangles at_reference{reference_, triangles.corners, triangles.face};
+  TriangleTree tree(at_reference);
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> found(static_cast<size_t>(omp_get_max_threads()));
   tree.for_each_overlapping_pair(
-      wanted,
+      stale,
       [&](size_t a, size_t b, int thread) {
-        if (reference_.face[a] == reference_.face[b] || triangles_share_a_vertex(reference_, a, b)) return;
+        if (at_reference.face[a] == at_reference.face[b] || triangles_share_a_vertex(at_reference, a, b)) return;
         found[size_t(thread)].emplace_back(uint32_t(a), uint32_t(b));
       },
       8192, float(gap_));
-  for (const auto& some : found)
-    for (const auto& [a, b] : some) {
-      partners_[a].push_back(b);
-      partners_[b].push_back(a);
-    }
+  // Each pair under both its triangles, by a counting sort.
+  partner_offsets_.assign(count + 1, 0);
+  auto each_pair = [&](auto&& visit) {
+    for (const auto& [a, b] : kept) visit(a, b);
+    for (const auto& some : found)
+      for (const auto& [a, b] : some) visit(a, b);
+  };
+  each_pair([&](uint32_t a, uint32_t b) { ++partner_offsets_[a + 1], ++partner_offsets_[b + 1]; });
+  for (size_t t = 0; t < count; ++t) partner_offsets_[t + 1] += partner_offsets_[t];
+  partners_.resize(partner_offsets_.back());
+  std::vector<uint32_t> next(partner_offsets_.begin(), partner_offsets_.end() - 1);
+  each_pair([&](uint32_t a, uint32_t b) { partners_[next[a]++] = b, partners_[next[b]++] = a; });
+  ++(stale ? refreshes_ : builds_);
 }
 
 std::vector<std::pair<int, int>> CloseTrianglePairs::intersecting_face_pairs(const MeshTriangles& triangles,
@@ -110,9 +106,11 @@ std::vector<std::pair<int, int>> CloseTrianglePairs::intersecting_face_pairs(con
 #pragma omp parallel for schedule(dynamic, 256) if (count > 8192)
   for (long i = 0; i < count; ++i) {
     const uint32_t t = tested[size_t(i)];
-    for (uint32_t p : partners_[t])
+    for (uint32_t j = partner_offsets_[t]; j < partner_offsets_[t + 1]; ++j) {
+      const uint32_t p = partners_[j];
       if ((only_faces || p > t) && triangle_pair_intersects(triangles, t, p))
         found.add(triangles, t, p, omp_get_thread_num());
+    }
   }
   return found.sorted();
 }

@@ -46,24 +46,19 @@ class CloseTrianglePairs {
 
  private:
   double gap_;
-  //! The mesh's triangles at the reference positions.
-  MeshTriangles reference_;
-  //! Per triangle, the triangles it is listed with (each pair under both).
-  std::vector<std::vector<uint32_t>> partners_;
-  //! Per vertex, its triangles: vertex_triangles_[vertex_triangle_offsets_[v] .. [v + 1]).
-  std::vector<uint32_t> vertex_triangle_offsets_, vertex_triangles_;
+  //! Per vertex, its reference position.
+  std::vector<Eigen::Vector3d> reference_;
+  //! Per triangle, the triangles it is listed with (each pair under both):
+  //! those of triangle t are partners_[partner_offsets_[t] .. [t + 1]).
+  std::vector<uint32_t> partner_offsets_, partners_;
   size_t builds_ = 0, refreshes_ = 0;
 
   //! Brings the list up to `triangles`' positions: nothing, the pairs of the
   //! triangles round the vertices gone too far, or all of it.
   void update(const MeshTriangles& triangles);
-  void build(const MeshTriangles& triangles);
   //! Looks again for the pairs of the `stale` triangles (per triangle,
-  //! nonzero), at the reference positions.
-  void refresh(const std::vector<char>& stale);
-  //! Adds the pairs within the gap at the reference positions of which at
-  //! least one triangle is `wanted` (null: all).
-  void add_pairs(const std::vector<char>* wanted);
+  //! nonzero; all when null), at the reference positions.
+  void refresh(const MeshTriangles& triangles, const std::vector<char>* stale);
 };
 
 }  // namespace mcquad

@@ -149,25 +149,29 @@ std::vector<uint32_t> CrossingGuard::apply(const std::vector<float>& before, std
     return longest;
   };
   // Where known_ holds for `before` (every call but one after the guard was
-  // made from other positions), the first round looks only at the faces
+  // made from other positions), the first round may look only at the faces
   // with a corner that moved: among the others the pairs are known_'s, and
   // a defect of theirs alone has no moved corner to hold back. Later rounds
   // look only at the faces around vertices just held back (a defect
   // elsewhere was ruled out).
+  // When most faces moved (an evolution step moves every vertex), the whole
+  // test costs less than the faces one by one.
+  std::vector<char> dirty(mesh_.face_count(), 0), changed(mesh_.face_count(), 0);
+  size_t moved_faces = 0;
   const bool known_holds = known_at_ == before;
-  std::vector<char> dirty(mesh_.face_count(), known_holds ? 0 : 1), changed(mesh_.face_count(), 0);
   if (known_holds)
     for (uint32_t v = 0; v < mesh_.vertex_count(); ++v)
       if (vertex_moved(before, after, v))
         for (uint32_t j = mesh_.vertex_face_offsets[v]; j < mesh_.vertex_face_offsets[v + 1]; ++j)
-          dirty[mesh_.vertex_faces[j]] = 1;
+          moved_faces += !dirty[mesh_.vertex_faces[j]], dirty[mesh_.vertex_faces[j]] = 1;
+  const bool look_at_all = !known_holds || 2 * moved_faces > mesh_.face_count();
   for (size_t v = 0; v < mesh_.vertex_count(); ++v) triangles_.positions[v] = position(after, uint32_t(v));
   std::vector<Defect> found_first;
   for (bool first = true;; first = false) {
-    std::vector<Defect> found = find_defects(triangles_, after, first && !known_holds ? nullptr : &dirty);
+    std::vector<Defect> found = find_defects(triangles_, after, first && look_at_all ? nullptr : &dirty);
     if (first) {
       found_first = found;
-      if (known_holds)
+      if (!look_at_all)
         for (const Defect& d : known_)
           if (!dirty[size_t(d.first)] && !dirty[size_t(d.second)]) found_first.push_back(d);
     }

@@ -6,7 +6,9 @@ namespace mcquad {
 
 CrossingTracker::CrossingTracker(const QuadMesh& mesh)
     : triangles_(triangulate(mesh)), close_(CloseTrianglePairs::half_mean_edge(triangles_)) {
-  pairs_ = close_.intersecting_face_pairs(triangles_);
+  // One plain search: most meshes have no crossing and stop here. The list
+  // is built at the first search after a move.
+  pairs_ = intersecting_face_pairs(triangles_);
 }
 
 std::vector<std::pair<int, int>> CrossingTracker::pairs(const QuadMesh& mesh) {

@@ -9,8 +9,9 @@
 
 namespace mcquad {
 
-TriangleNeighbourhoods::TriangleNeighbourhoods(const TriangleTree& tree) : tree_(tree) {
+TriangleNeighbourhoods::TriangleNeighbourhoods(const TriangleTree& tree, size_t queries) : tree_(tree) {
   const size_t n = tree.size();
+  if (double(queries) < kLeastQueriesPerTriangle * double(n)) return;
   // Half a triangle's box diagonal: most points of a cloud the mesh fits lie
   // nearer than a quarter of it to the previous point's triangle. Capped at
   // the 95th percentile, so that a few large triangles do not widen the
@@ -53,7 +54,7 @@ TriangleNeighbourhoods::TriangleNeighbourhoods(const TriangleTree& tree) : tree_
 }
 
 std::pair<double, long> TriangleNeighbourhoods::nearest(const Eigen::Vector3d& p, long hint) const {
-  if (hint < 0 || size_t(hint) >= tree_.size()) return tree_.nearest(p, hint);
+  if (offsets_.empty() || hint < 0 || size_t(hint) >= tree_.size()) return tree_.nearest(p, hint);
   const double to_hint = tree_.triangle_distance(p, size_t(hint));
   if (!(2 * to_hint < reach_[size_t(hint)])) return tree_.nearest(p, hint);
   double best = to_hint;

@@ -19,8 +19,15 @@ namespace mcquad {
 //! the tree.
 class TriangleNeighbourhoods {
  public:
-  //! `tree` must outlive this.
-  explicit TriangleNeighbourhoods(const TriangleTree& tree);
+  //! `tree` must outlive this. The lists are built only for at least
+  //! kLeastQueriesPerTriangle `queries` per triangle; for fewer they cost
+  //! more to build than they save, and every query descends the tree.
+  //! Measured on the knot's 413,696 points (docs/PERFORMANCE.md): at 23 a
+  //! triangle (its default mesh) the two ways take about as long; at 5.9
+  //! and 1.5 the lists made the metrics 1.3 and 1.6 times slower, and at
+  //! 0.09 (2.26 million vertices) they took 4 GB.
+  TriangleNeighbourhoods(const TriangleTree& tree, size_t queries);
+  static constexpr double kLeastQueriesPerTriangle = 16.0;
 
   //! As TriangleTree::nearest(p, hint): the same distance.
   std::pair<double, long> nearest(const Eigen::Vector3d& p, long hint) const;

@@ -43,9 +43,9 @@ std::vector<double> mesh_to_cloud_distances(const QuadMesh& mesh, const CellTree
 std::vector<double> cloud_to_mesh_distances(const QuadMesh& mesh, const PointCloud& cloud, size_t max_points) {
   MeshTriangles triangles = triangulate(mesh);
   TriangleTree tree(triangles);
-  TriangleNeighbourhoods neighbourhoods(tree);
   size_t stride = cloud_sample_stride(cloud.size(), max_points);
   std::vector<double> out((cloud.size() + stride - 1) / stride);
+  TriangleNeighbourhoods neighbourhoods(tree, out.size());
   // Each thread takes a run of points, near each other where the cloud is
   // sorted spatially (as fit sorts it): the neighbours of the last answer
   // are most often all the next point needs to test.
