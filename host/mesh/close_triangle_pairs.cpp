@@ -25,7 +25,7 @@ double CloseTrianglePairs::half_mean_edge(const MeshTriangles& triangles) {
 
 void CloseTrianglePairs::update(const MeshTriangles& triangles) {
   const size_t vertices = triangles.positions.size();
-  if (reference_.size() != vertices || partner_offsets_.size() != triangles.size() + 1) {
+  if (reference_.size() != vertices || partners_.size() != triangles.size()) {
     reference_ = triangles.positions;
     return refresh(triangles, nullptr);
   }
@@ -57,16 +57,23 @@ void CloseTrianglePairs::update(const MeshTriangles& triangles) {
 }
 
 void CloseTrianglePairs::refresh(const MeshTriangles& triangles, const std::vector<char>* stale) {
-  const size_t count = triangles.size();
-  // The pairs of fresh triangles stay; those of stale ones are looked for at
-  // the reference positions (a tree over their boxes, for the stale ones).
-  std::vector<std::pair<uint32_t, uint32_t>> kept;
-  if (stale)
-    for (uint32_t t = 0; t < count; ++t)
-      if (!(*stale)[t])
-        for (uint32_t j = partner_offsets_[t]; j < partner_offsets_[t + 1]; ++j)
-          if (partners_[j] > t && !(*stale)[partners_[j]]) kept.emplace_back(t, partners_[j]);
-  std::vector<uint32_t>().swap(partners_);  // the old list goes before the new one is found
+  // The pairs of stale triangles go; those of fresh ones stay. Then the
+  // stale triangles' pairs are looked for at the reference positions.
+  if (!stale) {
+    std::vector<std::vector<uint32_t>>().swap(partners_);  // the old list goes before the new one is found
+    partners_.resize(triangles.size());
+  } else {
+    for (size_t t = 0; t < partners_.size(); ++t) {
+      if (!(*stale)[t]) continue;
+      for (uint32_t p : partners_[t]) {
+        if ((*stale)[p]) continue;
+        auto& theirs = partners_[p];
+        *std::find(theirs.begin(), theirs.end(), uint32_t(t)) = theirs.back();
+        theirs.pop_back();
+      }
+      partners_[t].clear();
+    }
+  }
   MeshTriangles at_reference{reference_, triangles.corners, triangles.face};
   TriangleTree tree(at_reference);
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> found(static_cast<size_t>(omp_get_max_threads()));
@@ -77,18 +84,11 @@ void CloseTrianglePairs::refresh(const MeshTriangles& triangles, const std::vect
         found[size_t(thread)].emplace_back(uint32_t(a), uint32_t(b));
       },
       8192, float(gap_));
-  // Each pair under both its triangles, by a counting sort.
-  partner_offsets_.assign(count + 1, 0);
-  auto each_pair = [&](auto&& visit) {
-    for (const auto& [a, b] : kept) visit(a, b);
-    for (const auto& some : found)
-      for (const auto& [a, b] : some) visit(a, b);
-  };
-  each_pair([&](uint32_t a, uint32_t b) { ++partner_offsets_[a + 1], ++partner_offsets_[b + 1]; });
-  for (size_t t = 0; t < count; ++t) partner_offsets_[t + 1] += partner_offsets_[t];
-  partners_.resize(partner_offsets_.back());
-  std::vector<uint32_t> next(partner_offsets_.begin(), partner_offsets_.end() - 1);
-  each_pair([&](uint32_t a, uint32_t b) { partners_[next[a]++] = b, partners_[next[b]++] = a; });
+  for (const auto& some : found)
+    for (const auto& [a, b] : some) {
+      partners_[a].push_back(b);
+      partners_[b].push_back(a);
+    }
   ++(stale ? refreshes_ : builds_);
 }
 
@@ -106,11 +106,9 @@ std::vector<std::pair<int, int>> CloseTrianglePairs::intersecting_face_pairs(con
 #pragma omp parallel for schedule(dynamic, 256) if (count > 8192)
   for (long i = 0; i < count; ++i) {
     const uint32_t t = tested[size_t(i)];
-    for (uint32_t j = partner_offsets_[t]; j < partner_offsets_[t + 1]; ++j) {
-      const uint32_t p = partners_[j];
+    for (uint32_t p : partners_[t])
       if ((only_faces || p > t) && triangle_pair_intersects(triangles, t, p))
         found.add(triangles, t, p, omp_get_thread_num());
-    }
   }
   return found.sorted();
 }

@@ -48,9 +48,11 @@ class CloseTrianglePairs {
   double gap_;
   //! Per vertex, its reference position.
   std::vector<Eigen::Vector3d> reference_;
-  //! Per triangle, the triangles it is listed with (each pair under both):
-  //! those of triangle t are partners_[partner_offsets_[t] .. [t + 1]).
-  std::vector<uint32_t> partner_offsets_, partners_;
+  //! Per triangle, the triangles it is listed with (each pair under both).
+  //! A vector each, so that a refresh touches only the stale triangles' and
+  //! their partners' (one array for all, rebuilt at every refresh, made the
+  //! guard three times slower on a 92,674-vertex fit: docs/PERFORMANCE.md).
+  std::vector<std::vector<uint32_t>> partners_;
   size_t builds_ = 0, refreshes_ = 0;
 
   //! Brings the list up to `triangles`' positions: nothing, the pairs of the
