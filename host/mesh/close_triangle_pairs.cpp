@@ -36,14 +36,22 @@ void CloseTrianglePairs::update(const MeshTriangles& triangles) {
   // boxes are floats and so is its gap test: allow for a few roundings at
   // the coordinates' magnitude.
   const double slack = 8 * FLT_EPSILON * (extent + gap_);
-  std::vector<char> gone(vertices, 0);
+  std::vector<double> moved(vertices);
   bool any = false;
+  for (size_t v = 0; v < vertices; ++v) {
+    moved[v] = 2 * (triangles.positions[v] - reference_[v]).cwiseAbs().maxCoeff() + slack;
+    any |= moved[v] > gap_;
+  }
+  if (!any) return;
+  // Those gone too far, and with them those half way there: where the whole
+  // mesh drifts (the knot's steps), the next call would find the next few
+  // gone, and a refresh each step cost more than a rebuild now and then.
+  std::vector<char> gone(vertices, 0);
   for (size_t v = 0; v < vertices; ++v)
-    if (2 * (triangles.positions[v] - reference_[v]).cwiseAbs().maxCoeff() + slack > gap_) {
-      gone[v] = 1, any = true;
+    if (moved[v] > 0.5 * gap_) {
+      gone[v] = 1;
       reference_[v] = triangles.positions[v];
     }
-  if (!any) return;
   std::vector<char> stale(triangles.size(), 0);
   size_t stale_count = 0;
   for (size_t t = 0; t < triangles.size(); ++t) {
@@ -68,8 +76,7 @@ void CloseTrianglePairs::refresh(const MeshTriangles& triangles, const std::vect
       for (uint32_t p : partners_[t]) {
         if ((*stale)[p]) continue;
         auto& theirs = partners_[p];
-        *std::find(theirs.begin(), theirs.end(), uint32_t(t)) = theirs.back();
-        theirs.pop_back();
+        theirs.erase(std::lower_bound(theirs.begin(), theirs.end(), uint32_t(t)));
       }
       partners_[t].clear();
     }
@@ -84,11 +91,19 @@ void CloseTrianglePairs::refresh(const MeshTriangles& triangles, const std::vect
         found[size_t(thread)].emplace_back(uint32_t(a), uint32_t(b));
       },
       8192, float(gap_));
+  // Each list sorted, so that the whole test reads each pair once, from its
+  // lower triangle's list, past its own index.
+  std::vector<char> touched(partners_.size(), 0);
   for (const auto& some : found)
     for (const auto& [a, b] : some) {
       partners_[a].push_back(b);
       partners_[b].push_back(a);
+      touched[a] = touched[b] = 1;
     }
+  const long count = long(partners_.size());
+#pragma omp parallel for schedule(dynamic, 1024) if (count > 8192)
+  for (long t = 0; t < count; ++t)
+    if (touched[size_t(t)]) std::sort(partners_[size_t(t)].begin(), partners_[size_t(t)].end());
   ++(stale ? refreshes_ : builds_);
 }
 
@@ -106,9 +121,9 @@ std::vector<std::pair<int, int>> CloseTrianglePairs::intersecting_face_pairs(con
 #pragma omp parallel for schedule(dynamic, 256) if (count > 8192)
   for (long i = 0; i < count; ++i) {
     const uint32_t t = tested[size_t(i)];
-    for (uint32_t p : partners_[t])
-      if ((only_faces || p > t) && triangle_pair_intersects(triangles, t, p))
-        found.add(triangles, t, p, omp_get_thread_num());
+    const auto& mine = partners_[t];
+    for (auto p = only_faces ? mine.begin() : std::upper_bound(mine.begin(), mine.end(), t); p != mine.end(); ++p)
+      if (triangle_pair_intersects(triangles, t, *p)) found.add(triangles, t, *p, omp_get_thread_num());
   }
   return found.sorted();
 }

@@ -116,7 +116,8 @@ std::vector<CrossingGuard::Defect> CrossingGuard::find_defects(const MeshTriangl
     if (bad[t]) found.emplace_back(f, -1);
     for (uint32_t j = neighbour_offsets_[size_t(f)]; j < neighbour_offsets_[size_t(f) + 1]; ++j) {
       const int g = int(neighbours_[j]);
-      if (normals_fold(normal[size_t(f)], normal[size_t(g)])) found.emplace_back(std::min(f, g), std::max(f, g));
+      if (only_faces || g > f)  // all faces tested: each pair once
+        if (normals_fold(normal[size_t(f)], normal[size_t(g)])) found.emplace_back(std::min(f, g), std::max(f, g));
     }
   }
   std::sort(found.begin(), found.end());
