@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
 
 #include "core/quad_mesh.h"
@@ -51,6 +52,21 @@ void add_quad_grid(QuadMesh& mesh, int n, Place&& place) {
   auto at = [&](int a, int b) { return v[size_t(a * (n + 1) + b)]; };
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) mesh.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+}
+
+//! A grid of quads over [0, n]^2 whose vertices are jittered in height,
+//! plus a second, tilted grid through it: many crossings, many near misses.
+inline QuadMesh crumpled_sheets(int n, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  QuadMesh mesh;
+  for (int sheet = 0; sheet < 2; ++sheet)
+    add_quad_grid(mesh, n, [&](int i, int j) {
+      double x = i, y = j, z = jitter(random);
+      if (sheet == 1) z += 0.2 * (x - n / 2.0);  // tilted through the first sheet
+      return QuadMesh::Point(x + 0.37 * sheet, y + 0.21 * sheet, z);
+    });
+  return mesh;
 }
 
 //! The cube [0, 1]^3 as six outward quads; `inward` turns every face over.

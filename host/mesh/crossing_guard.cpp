@@ -152,11 +152,11 @@ std::vector<uint32_t> CrossingGuard::apply(const std::vector<float>& before, std
   // Where known_ holds for `before` (every call but one after the guard was
   // made from other positions), the first round may look only at the faces
   // with a corner that moved: among the others the pairs are known_'s, and
-  // a defect of theirs alone has no moved corner to hold back. Later rounds
-  // look only at the faces around vertices just held back (a defect
-  // elsewhere was ruled out).
-  // When most faces moved (an evolution step moves every vertex), the whole
-  // test costs less than the faces one by one.
+  // a defect of theirs alone has no moved corner to hold back. When most
+  // faces moved (an evolution step moves every vertex), it tests the whole
+  // mesh, which costs less than the faces one by one. Later rounds look only
+  // at the faces around vertices just held back (a defect elsewhere was
+  // ruled out).
   std::vector<char> dirty(mesh_.face_count(), 0), changed(mesh_.face_count(), 0);
   size_t moved_faces = 0;
   const bool known_holds = known_at_ == before;

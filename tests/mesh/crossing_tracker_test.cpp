@@ -10,26 +10,12 @@
 namespace mcquad {
 namespace {
 
-//! Two jittered grids of quads, the second tilted through the first: many
-//! crossings and near misses.
-QuadMesh two_grids(int n, unsigned seed) {
-  std::mt19937 random(seed);
-  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
-  QuadMesh mesh;
-  for (int sheet = 0; sheet < 2; ++sheet)
-    test::add_quad_grid(mesh, n, [&](int i, int j) {
-      double z = jitter(random) + (sheet == 1 ? 0.2 * (i - n / 2.0) : 0.0);
-      return QuadMesh::Point(i + 0.37 * sheet, j + 0.21 * sheet, z);
-    });
-  return mesh;
-}
-
 //! As the smoothing rounds it serves move them: a few vertices far, many a
 //! little, then back where they were; every answer is the whole search's.
 TEST(CrossingTracker, AnswersAsTheWholeSearchAsVerticesMove) {
   std::mt19937 random(5);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  QuadMesh mesh = two_grids(12, 3);
+  QuadMesh mesh = test::crumpled_sheets(12, 3);
   CrossingTracker tracker(mesh);
   ASSERT_EQ(tracker.pairs(mesh), intersecting_face_pairs(mesh));
   ASSERT_FALSE(tracker.pairs(mesh).empty());

@@ -11,20 +11,7 @@
 namespace mcquad {
 namespace {
 
-//! A grid of quads over [0, n]^2 whose vertices are jittered in height,
-//! plus a second, tilted grid through it: many crossings, many near misses.
-QuadMesh crumpled_sheets(int n, unsigned seed) {
-  std::mt19937 random(seed);
-  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
-  QuadMesh mesh;
-  for (int sheet = 0; sheet < 2; ++sheet)
-    test::add_quad_grid(mesh, n, [&](int i, int j) {
-      double x = i, y = j, z = jitter(random);
-      if (sheet == 1) z += 0.2 * (x - n / 2.0);  // tilted through the first sheet
-      return QuadMesh::Point(x + 0.37 * sheet, y + 0.21 * sheet, z);
-    });
-  return mesh;
-}
+using test::crumpled_sheets;
 
 std::vector<std::pair<int, int>> brute_force(const MeshTriangles& t, const std::vector<char>* only_faces = nullptr) {
   std::vector<std::pair<int, int>> pairs;
