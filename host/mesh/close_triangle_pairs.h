@@ -17,11 +17,11 @@ namespace mcquad {
 //! no vertex has moved more than about gap / 2 along any axis from its own
 //! reference, every pair whose boxes overlap now is on the list, so testing
 //! the list finds exactly what intersecting_face_pairs finds. The vertices
-//! that have gone further take their positions as new references and only
-//! their triangles' pairs are looked for again (the smoothing of a few
-//! turned faces, or the held-back vertices of a fine mesh, move a few
-//! vertices far while the rest stay); when they are many, the whole list is
-//! built again. On the knot's mesh most of the evolution's steps move every
+//! that have gone further (and with them those half way there) take their
+//! positions as new references and only their triangles' pairs are looked
+//! for again (the smoothing of a few turned faces, or the held-back
+//! vertices of a fine mesh, move a few vertices far while the rest stay);
+//! when they are many, the whole list is built again. On the knot's mesh most of the evolution's steps move every
 //! vertex far less than that (docs/PERFORMANCE.md).
 class CloseTrianglePairs {
  public:
