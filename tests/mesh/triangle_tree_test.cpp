@@ -94,13 +94,14 @@ TEST(TriangleTree, PairsWithinAGapAreExactlyThoseOfAllPairs) {
     }
 }
 
-//! With the lists (as many queries as triangles or more) and without them
-//! (fewer: every query descends the tree), the same distances.
+//! With the lists (kLeastQueriesPerTriangle queries a triangle) and without
+//! them (one a triangle: every query descends the tree), the same distances.
 TEST(TriangleNeighbourhoods, NearestMatchesTheTreeAlongAWalkWithJumps) {
   for (unsigned seed : {1u, 2u, 3u, 4u}) {
     MeshTriangles triangles = triangulate(folded_sheet(14, seed));
     TriangleTree tree(triangles);
-    TriangleNeighbourhoods neighbourhoods(tree, seed < 4 ? 16 * triangles.size() : triangles.size());
+    const double per_triangle = seed < 4 ? TriangleNeighbourhoods::kLeastQueriesPerTriangle : 1.0;
+    TriangleNeighbourhoods neighbourhoods(tree, size_t(per_triangle * double(triangles.size())));
     std::mt19937 random(seed + 20);
     std::uniform_real_distribution<double> step(-0.3, 0.3), coordinate(-6.0, 20.0);
     Eigen::Vector3d p(5, 5, 0);
