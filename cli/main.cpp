@@ -106,6 +106,11 @@ struct FitCommand {
                     "initial mesh radius as a fraction of the local cloud radius")
         ->check(range("start_fraction"))
         ->capture_default_str();
+    app->add_option("--block-fraction", init.block_fraction,
+                    "robust mode: junction blocks' radius as a fraction of the local cloud radius (at least the "
+                    "start fraction)")
+        ->check(range("block_fraction"))
+        ->capture_default_str();
     app->add_option("--resolution", init.resolution,
                     "target edge length of the refined mesh (0 = 16 vertices around a tube)")
         ->check(range("resolution"))

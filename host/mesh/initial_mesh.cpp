@@ -1,6 +1,7 @@
 #include "mesh/initial_mesh.h"
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -39,6 +40,11 @@ constexpr double kPortWeight = 1.4;
 // acute-junction step creates (three bones, two of them close) are better
 // served by the general block even 10 to 25 degrees off a cube.
 constexpr double kCubeFitDegrees = 25.0, kCubeFitDegreesBelowFive = 10.0;
+// A limb narrower than this, in its first bone's radius, where the blend
+// from a grown block ends, keeps its junction's block at the start fraction
+// (MeshAssembler::block_fraction). Measured: the generated thin branch
+// narrows to 0.21, the octopus's tapering arms to 0.39.
+constexpr double kLeastLimbNarrowing = 0.3;
 
 std::string point_text(const Eigen::Vector3d& p) {
   std::ostringstream s;
@@ -73,18 +79,14 @@ class MeshAssembler {
     for (size_t node = 0; node < graph_.node_count(); ++node) {
       if (graph_.kind(int(node)) != NodeKind::kJunction) continue;
       const Eigen::Vector3d& center = graph_.positions[node];
-      JunctionBones bones;
-      for (int next : graph_.neighbours[node]) {
-        bones.directions.push_back((graph_.positions[next] - center).normalized());
-        bones.tube_radii.push_back(tube_radius(int(node), next));
-      }
+      const double fraction = block_fraction(int(node));
+      const JunctionBones bones = junction_bones(int(node), fraction);
       // Where the bones fit a cube's faces (every bone near its own face's
       // normal), the cube block: measured on the existing shapes, it is the
       // better one there. Otherwise the general block (junction_layout.h):
       // any valence, any directions.
       std::vector<Port> ports;
-      double largest_ring = *std::max_element(bones.tube_radii.begin(), bones.tube_radii.end());
-      double size = largest_ring / 0.76;  // the cube's ring lies at 0.76 of its size from its axis
+      const double size = block_size(bones);
       BlockOrientation cube;
       bool cube_fits = bones.directions.size() <= 6;
       if (cube_fits) {
@@ -95,9 +97,9 @@ class MeshAssembler {
       }
       // Where tubes overlap, the cloud can be thinner around the node than
       // any bone's radius (below a moved crotch): each block vertex stays
-      // at the start fraction of the way to the cloud in its direction.
+      // at the block's fraction of the way to the cloud in its direction.
       auto reach = [&](const Eigen::Vector3d& direction, double wanted) {
-        return options_.start_fraction * probe_.distance_along(center, direction, wanted / options_.start_fraction);
+        return fraction * probe_.distance_along(center, direction, wanted / fraction);
       };
       if (cube_fits) {
         ports = add_cube_block(
@@ -114,7 +116,8 @@ class MeshAssembler {
       const auto& neighbours = graph_.neighbours[node];
       for (size_t k = 0; k < ports.size(); ++k) {
         ports_[{int(node), neighbours[k]}] = ports[k];
-        blend_length_[{int(node), neighbours[k]}] = blend_length(int(node), int(k), bones.directions, ports[k], size);
+        blend_length_[{int(node), neighbours[k]}] =
+            blend_length(int(node), int(k), bones.directions, ports[k], size, fraction);
       }
     }
     return preference_mattered;
@@ -135,14 +138,75 @@ class MeshAssembler {
   const CloudProbe& probe() const { return probe_; }
 
  private:
-  //! Radius of the initial tube on the bone from `node` toward `next`.
-  double tube_radius(int node, int next) const {
+  //! Radius of the initial tube on the bone from `node` toward `next`, at
+  //! `fraction` of the cloud's (the start fraction unless given).
+  double tube_radius(int node, int next, double fraction = 0) const {
+    if (fraction <= 0) fraction = options_.start_fraction;
     for (size_t b = 0; b < graph_.edges.size(); ++b) {
       const auto& e = graph_.edges[b];
       if ((e[0] == node && e[1] == next) || (e[1] == node && e[0] == next))
-        return options_.start_fraction * skeleton_.bone_radius[b];
+        return fraction * skeleton_.bone_radius[b];
     }
-    return options_.start_fraction * skeleton_.node_radius[node];
+    return fraction * skeleton_.node_radius[node];
+  }
+
+  //! The directions of a junction's bones and their tubes' radii at `fraction`.
+  JunctionBones junction_bones(int node, double fraction) const {
+    JunctionBones bones;
+    for (int next : graph_.neighbours[size_t(node)]) {
+      bones.directions.push_back((graph_.positions[size_t(next)] - graph_.positions[size_t(node)]).normalized());
+      bones.tube_radii.push_back(tube_radius(node, next, fraction));
+    }
+    return bones;
+  }
+
+  static double block_size(const JunctionBones& bones) {
+    double largest_ring = *std::max_element(bones.tube_radii.begin(), bones.tube_radii.end());
+    return largest_ring / 0.76;  // the cube's ring lies at 0.76 of its size from its axis
+  }
+
+  //! The fraction of the cloud's radius a junction's block is built at: the
+  //! block fraction (robust mode: 0.9, above the tubes' 0.7, so the tubes
+  //! leave the block nearer to the creases between them; docs/DESIGN.md,
+  //! "Junction blocks nearer the cloud"), except where a limb is not a tube
+  //! as wide as its bone says all along its blend from the grown block: it
+  //! ends within it (a stub on a body: the armadillo's back, where the grown
+  //! block swallowed the stub and left the body uncovered), or narrows to
+  //! less than kLeastLimbNarrowing of its first bone's radius (a thin branch
+  //! off a trunk, whose first bone takes the trunk's radius: its port stood
+  //! out of the trunk's wall). The start fraction there.
+  double block_fraction(int node) const {
+    const double grown = std::max(options_.block_fraction, options_.start_fraction);
+    if (grown == options_.start_fraction) return grown;
+    const JunctionBones bones = junction_bones(node, grown);
+    const double size = block_size(bones);
+    const auto& neighbours = graph_.neighbours[size_t(node)];
+    for (size_t k = 0; k < neighbours.size(); ++k) {
+      Port straight;  // the port facing its bone, as a block built at `grown` has it
+      straight.outward = bones.directions[k];
+      straight.radius = bones.tube_radii[k];
+      const double blend = blend_length(node, int(k), bones.directions, straight, size, grown);
+      const double there = bone_radius_along(node, neighbours[k], blend);
+      if (there < kLeastLimbNarrowing * bones.tube_radii[k] / grown)
+        return options_.start_fraction;
+    }
+    return grown;
+  }
+
+  //! The cloud's radius on the branch from junction `node` through `next`,
+  //! `distance` along it (on its last bone where it reaches a junction
+  //! sooner); 0 where it ends sooner.
+  double bone_radius_along(int node, int next, double distance) const {
+    for (int previous = node;;) {
+      distance -= (graph_.positions[size_t(next)] - graph_.positions[size_t(previous)]).norm();
+      if (distance <= 0 || graph_.kind(next) == NodeKind::kJunction || next == node)
+        return tube_radius(previous, next, 1.0);
+      if (graph_.kind(next) == NodeKind::kEnd) return 0;
+      const auto& around = graph_.neighbours[size_t(next)];
+      const int after = around[0] == previous ? around[1] : around[0];
+      previous = next;
+      next = after;
+    }
   }
 
   //! How far along bone k of a junction its tube rejoins the skeleton: past
@@ -151,15 +215,15 @@ class MeshAssembler {
   //! The turn from the port's direction to the bone's needs room too: its
   //! radius of curvature stays well above the ring's radius.
   double blend_length(int node, int k, const std::vector<Eigen::Vector3d>& directions, const Port& port,
-                      double block_size) const {
+                      double block_size, double fraction) const {
     const auto& neighbours = graph_.neighbours[node];
-    double own = tube_radius(node, neighbours[k]);
+    double own = tube_radius(node, neighbours[k], fraction);
     double turn = std::acos(std::clamp(port.outward.dot(directions[k]), -1.0, 1.0));
     double length = std::max(1.5 * block_size, block_size + 3.0 * port.radius * turn);
     for (size_t j = 0; j < directions.size(); ++j) {
       if (int(j) == k) continue;
       double angle = std::acos(std::clamp(directions[k].dot(directions[j]), -1.0, 1.0));
-      double clearance = (own + tube_radius(node, neighbours[j])) / (2.0 * std::max(std::sin(angle / 2), 1e-3));
+      double clearance = (own + tube_radius(node, neighbours[j], fraction)) / (2.0 * std::max(std::sin(angle / 2), 1e-3));
       length = std::max(length, 1.2 * clearance);
     }
     return length;
@@ -510,11 +574,21 @@ InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment&
   // every shape and scan). Both are compared refined once (the default
   // resolution), whatever resolution is asked for, so every resolution
   // makes the same choice.
-  CoarseMesh coarse = assemble_coarse_mesh(skeleton, cloud, *cloud_index, options, source, BlockPreference::kFitted);
+  InitialMeshOptions used = options;
+  CoarseMesh coarse = assemble_coarse_mesh(skeleton, cloud, *cloud_index, used, source, BlockPreference::kFitted);
+  // The unrefined mesh (8 vertices round a tube) keeps its blocks at the
+  // start fraction: its faces are too coarse to stand nearer the cloud
+  // (the 60-degree Y's crotch crossed itself, 7 pairs, and a node of the
+  // octopus fell outside its mesh); refined, they are smoothed apart.
+  if (options.stage == ConstructionStage::kRefined && used.block_fraction > used.start_fraction &&
+      refinement_levels(coarse.result.mesh, options) == 0) {
+    used.block_fraction = used.start_fraction;
+    coarse = assemble_coarse_mesh(skeleton, cloud, *cloud_index, used, source, BlockPreference::kFitted);
+  }
   if (coarse.preference_mattered && options.stage == ConstructionStage::kRefined) {
     size_t crossings = intersecting_face_pairs(refined(coarse, 1, options.junction_inflation)).size();
     if (crossings > 0) {
-      CoarseMesh cubes = assemble_coarse_mesh(skeleton, cloud, *cloud_index, options, source, BlockPreference::kCube);
+      CoarseMesh cubes = assemble_coarse_mesh(skeleton, cloud, *cloud_index, used, source, BlockPreference::kCube);
       if (intersecting_face_pairs(refined(cubes, 1, options.junction_inflation)).size() < crossings)
         coarse = std::move(cubes);
     }

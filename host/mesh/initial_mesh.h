@@ -20,6 +20,10 @@ enum class ConstructionStage { kBlocks, kExtruded, kRefined };
 
 struct InitialMeshOptions {
   double start_fraction = 0.7;    //!< initial mesh radius as a fraction of the local cloud radius
+  //! The junction blocks' radius as a fraction of the local cloud radius (at
+  //! least the start fraction; the start fraction at a junction with a limb
+  //! shorter than its blend from the block).
+  double block_fraction = 0.9;
   EndMode ends = EndMode::kAuto;  //!< open/capped ends; auto decides from the cloud
   double resolution = 0;          //!< target edge length; 0 = auto (16 vertices around a tube)
   size_t target_vertices = 0;     //!< alternatively, refine until at least this many vertices

@@ -14,6 +14,7 @@ constexpr double kDegrees = 180.0 / M_PI;
 //! Every ranged option of fit, in user units.
 constexpr OptionRange kOptionRanges[] = {
     {"start_fraction", 0.05, 0.95},
+    {"block_fraction", 0.05, 0.95},
     {"resolution", 0, HUGE_VAL},
     {"min_junction_angle", 0, 120},
     {"junction_inflation", 0, 0.95},
@@ -46,7 +47,10 @@ InitialMeshOptions effective_initial_options(const FitOptions& options) {
   InitialMeshOptions initial = options.initial;
   const bool robust = options.evolution.mode == EvolutionParameters::Mode::kRobust;
   initial.coarse_first = options.evolve && robust && options.evolution.coarse_to_fine;
-  if (!robust) initial.junction_inflation = 0;
+  if (!robust) {
+    initial.junction_inflation = 0;
+    initial.block_fraction = initial.start_fraction;
+  }
   return initial;
 }
 
@@ -54,6 +58,7 @@ void check_fit_options(const FitOptions& options) {
   const auto& e = options.evolution;
   const auto& i = options.initial;
   check_range("start_fraction", i.start_fraction);
+  check_range("block_fraction", i.block_fraction);
   check_range("resolution", i.resolution);
   check_range("min_junction_angle", i.min_junction_angle * kDegrees);
   check_range("junction_inflation", i.junction_inflation);

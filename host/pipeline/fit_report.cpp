@@ -34,6 +34,7 @@ nlohmann::json to_json(const FitReport::Parameters& p) {
           {"leaf_size", p.leaf_size},
           {"leaf_size_automatic", o.leaf_size == 0},
           {"start_fraction", o.initial.start_fraction},
+          {"block_fraction", effective_initial_options(o).block_fraction},
           {"resolution", o.initial.resolution},
           {"target_vertices", o.initial.target_vertices},
           {"ends", word_of(o.initial.ends, end_mode_words())},

@@ -169,6 +169,7 @@ std::string script_safe(std::string text) {
 InitialMeshOptions initial_options_from(const nlohmann::json& p) {
   InitialMeshOptions o;
   o.start_fraction = p.value("start_fraction", o.start_fraction);
+  o.block_fraction = p.value("block_fraction", o.start_fraction);  // reports before 2026-12-04: the start fraction
   o.resolution = p.value("resolution", o.resolution);
   o.target_vertices = p.value("target_vertices", o.target_vertices);
   o.ends = end_mode_from_name(p.value("ends", std::string("auto")), "ends");

@@ -184,6 +184,7 @@ def fit(
     normals: Optional[ArrayLike] = None,
     ends: str = "auto",
     start_fraction: float = 0.7,
+    block_fraction: float = 0.9,
     resolution: float = 0.0,
     target_vertices: int = 0,
     min_junction_angle: float = 75.0,
@@ -234,6 +235,8 @@ def fit(
             tells inward and every cell faces every way).
         ends: ``auto`` (decided from the cloud), ``open`` or ``capped``.
         start_fraction: initial mesh radius as a fraction of the local cloud radius (0.05 to 0.95).
+        block_fraction: robust mode: junction blocks' radius as a fraction of the local cloud radius
+            (0.05 to 0.95; at least the start fraction).
         resolution: target edge length of the refined mesh (0: 16 vertices around a tube).
         target_vertices: refine until at least this many vertices (0: off).
         min_junction_angle: degrees (0 to 120); junctions whose bones fork more

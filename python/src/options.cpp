@@ -65,6 +65,7 @@ const FieldTable<FitOptions>& fit_fields() {
   static const FieldTable<O> table = {
       {"ends", word<O, EndMode>([](O& o) -> EndMode& { return o.initial.ends; }, end_mode_words, "ends")},
       {"start_fraction", nested(&O::initial, &I::start_fraction)},
+      {"block_fraction", nested(&O::initial, &I::block_fraction)},
       {"resolution", nested(&O::initial, &I::resolution)},
       {"target_vertices", nested(&O::initial, &I::target_vertices)},
       {"min_junction_angle", degrees(&O::initial, &I::min_junction_angle)},

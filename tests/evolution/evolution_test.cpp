@@ -9,6 +9,7 @@
 #include "helpers.h"
 #include "mesh/initial_mesh.h"
 #include "mesh/mesh_arrays.h"
+#include "pipeline/fit_options.h"
 #include "mesh/face_intersections.h"
 #include "metrics/mesh_metrics.h"
 #include "metrics/surface_distance.h"
@@ -92,9 +93,11 @@ TEST_P(OnEachBackend, ToleranceStopsEarly) {
 TEST_P(OnEachBackend, RobustModeFoldsAndCrossesLessThanThePaperAtCreases) {
   REQUIRE_BACKEND(backend, GetParam());
   // Both from the paper's start, as `fit --mode paper` builds it: robust
-  // mode's inflated junctions alone leave the paper's step nothing to cross.
-  InitialMeshOptions paper_start;
-  paper_start.junction_inflation = 0;
+  // mode's inflated junctions alone leave the paper's step nothing to cross,
+  // and so do its blocks built nearer the cloud.
+  FitOptions paper_fit;
+  paper_fit.evolution.mode = EvolutionParameters::Mode::kPaper;
+  const InitialMeshOptions paper_start = effective_initial_options(paper_fit);
   Fixture f("t-shape", 30000, {}, paper_start);
   auto run = [&](EvolutionParameters::Mode mode) {
     QuadMesh mesh = f.initial.mesh;

@@ -21,19 +21,20 @@ struct Junction {
   int arms;
   double angle_degrees;
   //! Whether issue 20's bound holds: at most 0.1 % of the area facing
-  //! against the true surface. Not yet on the skew 10 (0.101 %) nor the 30
-  //! degree fan (0.12 %), docs/HARD_CASES.md.
+  //! against the true surface (all four since the blocks were built nearer
+  //! the cloud; the skew 8 then kept only 0.04 % turned without the
+  //! smoothing, too little to test it on, and the skew 12 took its place).
   bool within_bound;
 };
 
 void PrintTo(const Junction& c, std::ostream* os) { *os << c.label; }
 
-//! Junctions whose creases leave 0.2-1.1 % of the area turned without the
+//! Junctions whose creases leave 0.15-0.8 % of the area turned without the
 //! smoothing (docs/HARD_CASES.md).
 const Junction kJunctions[] = {{"planar_5", "planar-star", 5, 0, true},
-                               {"skew_8", "star", 8, 0, true},
-                               {"skew_10", "star", 10, 0, false},
-                               {"fan_30", "fan", 4, 30, false}};
+                               {"skew_12", "star", 12, 0, true},
+                               {"skew_10", "star", 10, 0, true},
+                               {"fan_30", "fan", 4, 30, true}};
 
 struct Fitted {
   FitResult fit;

@@ -31,10 +31,15 @@ TEST(JunctionInflation, MovesTheMeshRoundAJunctionTowardTheTrueSurface) {
   ShapeOptions star;
   star.arms = 8;
   const auto [shape, graph, bones] = test::ShapeWithBones("star", 30000, star);
-  InitialMeshOptions off;
+  // The blocks at the tubes' start fraction, to see the inflation alone (a
+  // block built nearer the cloud, initial_mesh.h's block_fraction, already
+  // starts the hub 0.26 r deep instead of 0.30; inflated, 0.22 either way).
+  InitialMeshOptions on;
+  on.block_fraction = on.start_fraction;
+  InitialMeshOptions off = on;
   off.junction_inflation = 0;
   InitialMesh plain = build_initial_mesh(graph, bones, shape.cloud, off, "star");
-  InitialMesh inflated = build_initial_mesh(graph, bones, shape.cloud, {}, "star");
+  InitialMesh inflated = build_initial_mesh(graph, bones, shape.cloud, on, "star");
   const Eigen::Vector3d node = graph.positions[0];  // the generator's hub
   ASSERT_EQ(graph.kind(0), NodeKind::kJunction);
   const double radius = 0.8, reach = 2.0 * radius;

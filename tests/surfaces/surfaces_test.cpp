@@ -133,12 +133,14 @@ TEST_P(SurfacesOnShapes, RegionsAreGridsAndSurfacesMeetAlongTheirSeams) {
   // The seams' tangent check needs a mesh that is smooth two edges from its
   // irregular vertices. The junctions' inflation leaves the fitted theta a
   // crease there (surfaces 4.3 degrees apart, 0.6 without it; the mesh's
-  // own, docs/DESIGN.md), so this checks the surfaces on the uninflated fit.
+  // own, docs/DESIGN.md), so this checks the surfaces on the uninflated fit,
+  // its blocks at the tubes' start fraction (grown, 4.1 degrees).
   // The facing cells leave quads near the theta's junctions less square
   // (least scaled Jacobian 0.54 -> 0.33) and its surfaces 7.2 degrees apart
   // at a seam there (docs/DESIGN.md), so they are off here too.
   InitialMeshOptions smooth_start;
   smooth_start.junction_inflation = 0;
+  smooth_start.block_fraction = smooth_start.start_fraction;
   EvolutionSetup setup = prepare_evolution(graph, shape.cloud, smooth_start, 6, GetParam().shape);
   EvolutionParameters parameters;
   parameters.epsilon = automatic_epsilon(setup.median_radius);
