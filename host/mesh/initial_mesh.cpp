@@ -144,8 +144,7 @@ class MeshAssembler {
     if (fraction <= 0) fraction = options_.start_fraction;
     for (size_t b = 0; b < graph_.edges.size(); ++b) {
       const auto& e = graph_.edges[b];
-      if ((e[0] == node && e[1] == next) || (e[1] == node && e[0] == next))
-        return fraction * skeleton_.bone_radius[b];
+      if ((e[0] == node && e[1] == next) || (e[1] == node && e[0] == next)) return fraction * skeleton_.bone_radius[b];
     }
     return fraction * skeleton_.node_radius[node];
   }
@@ -187,8 +186,7 @@ class MeshAssembler {
       straight.radius = bones.tube_radii[k];
       const double blend = blend_length(node, int(k), bones.directions, straight, size, grown);
       const double there = bone_radius_along(node, neighbours[k], blend);
-      if (there < kLeastLimbNarrowing * bones.tube_radii[k] / grown)
-        return options_.start_fraction;
+      if (there < kLeastLimbNarrowing * bones.tube_radii[k] / grown) return options_.start_fraction;
     }
     return grown;
   }
@@ -223,7 +221,8 @@ class MeshAssembler {
     for (size_t j = 0; j < directions.size(); ++j) {
       if (int(j) == k) continue;
       double angle = std::acos(std::clamp(directions[k].dot(directions[j]), -1.0, 1.0));
-      double clearance = (own + tube_radius(node, neighbours[j], fraction)) / (2.0 * std::max(std::sin(angle / 2), 1e-3));
+      double clearance =
+          (own + tube_radius(node, neighbours[j], fraction)) / (2.0 * std::max(std::sin(angle / 2), 1e-3));
       length = std::max(length, 1.2 * clearance);
     }
     return length;

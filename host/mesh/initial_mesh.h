@@ -19,7 +19,7 @@ enum class EndMode { kAuto, kOpen, kCapped };
 enum class ConstructionStage { kBlocks, kExtruded, kRefined };
 
 struct InitialMeshOptions {
-  double start_fraction = 0.7;    //!< initial mesh radius as a fraction of the local cloud radius
+  double start_fraction = 0.7;  //!< initial mesh radius as a fraction of the local cloud radius
   //! The junction blocks' radius as a fraction of the local cloud radius (at
   //! least the start fraction; the start fraction at a junction with a limb
   //! shorter than its blend from the block).
