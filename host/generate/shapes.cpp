@@ -1,8 +1,11 @@
 #include "generate/shapes.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
+#include <random>
 
 #include "core/errors.h"
 #include "io/file_utils.h"
@@ -255,6 +258,108 @@ void double_junction(ShapeBuilder& b) {
   b.tube(b.line(right, Vec(4, 0.5, -4.5), 1.0), 0.7, false, true);
 }
 
+//! A random tree of tubes for property tests over many seeds (issue 20:
+//! any valence, direction and radius): a root junction of valence 3 to 6,
+//! some of whose arms lead to a second-level junction of valence 3 to 5
+//! (three junctions at most); arm directions at random, every two arms of
+//! a node at least 45 degrees apart; radii 0.45 to 1; chains 3 to 6 long,
+//! nodes 0.7 to 1.3 apart; a third of the ends open. An arm that would
+//! come within its radius plus 0.4 of a tube not at its own node is drawn
+//! again (after 100 draws the tree starts over), so tubes meet only at
+//! their junctions. The seed picks the tree as well as the cloud.
+void random_tree(ShapeBuilder& b, uint64_t seed) {
+  std::mt19937_64 random(seed ^ 0x5DEECE66Dull);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  auto between = [&](double low, double high) { return low + (high - low) * unit(random); };
+  auto direction = [&]() {
+    double z = between(-1, 1), phi = between(0, 2 * M_PI), r = std::sqrt(1 - z * z);
+    return Vec(r * std::cos(phi), r * std::sin(phi), z);
+  };
+  struct Arm {
+    int from;
+    Vec direction;
+    double radius, length;
+  };
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    ShapeBuilder tree;
+    std::vector<std::vector<Vec>> directions_at;  // per node, its arms' directions so far
+    std::vector<std::vector<int>> chains_at;      // per node, the chains (arms) that meet it
+    std::vector<int> chain_of;                    // per capsule
+    int chains = 0;
+    auto add_node = [&](const Vec& p) {
+      directions_at.emplace_back();
+      chains_at.emplace_back();
+      return tree.node(p);
+    };
+    // Whether an arm is clear of every tube that does not meet its node.
+    auto clear = [&](const Arm& arm) {
+      for (const Vec& d : directions_at[size_t(arm.from)])
+        if (d.dot(arm.direction) > std::cos(45.0 * M_PI / 180.0)) return false;
+      const auto& own = chains_at[size_t(arm.from)];
+      TubeSurface others;
+      const auto& capsules = tree.shape.surface.capsules();
+      for (size_t c = 0; c < capsules.size(); ++c)
+        if (std::find(own.begin(), own.end(), chain_of[c]) == own.end()) others.add(capsules[c]);
+      if (others.capsules().empty()) return true;
+      const Vec start = tree.shape.skeleton.nodes[size_t(arm.from)];
+      for (double s = 0; s <= arm.length + 1e-9; s += 0.25)
+        if (others.signed_distance(start + s * arm.direction) < arm.radius + 0.4) return false;
+      return true;
+    };
+    auto draw = [&](int from) {
+      for (int draws = 0; draws < 100; ++draws) {
+        Arm arm{from, direction(), between(0.45, 1.0), between(3.0, 6.0)};
+        if (clear(arm)) return std::optional<Arm>(arm);
+      }
+      return std::optional<Arm>();
+    };
+    auto lay = [&](const Arm& arm, bool open_end) {
+      const Vec start = tree.shape.skeleton.nodes[size_t(arm.from)];
+      int pieces = std::max(2, int(std::lround(arm.length / between(0.7, 1.3))));
+      std::vector<int> ids{arm.from};
+      for (int k = 1; k <= pieces; ++k) ids.push_back(add_node(start + arm.direction * (arm.length * k / pieces)));
+      directions_at[size_t(arm.from)].push_back(arm.direction);
+      chain_of.resize(chain_of.size() + ids.size() - 1, chains);
+      chains_at[size_t(ids.front())].push_back(chains);
+      chains_at[size_t(ids.back())].push_back(chains);
+      ++chains;
+      tree.tube(ids, arm.radius, false, open_end);
+      return ids.back();
+    };
+    bool failed = false;
+    int junctions = 1;
+    const int root = add_node(Vec::Zero());
+    const int root_valence = 3 + int(random() % 4);
+    for (int k = 0; k < root_valence && !failed; ++k) {
+      std::optional<Arm> arm = draw(root);
+      if (!arm) {
+        failed = true;
+        break;
+      }
+      if (junctions < 3 && unit(random) < 0.35) {
+        // A chain to a second junction, which then grows 2 to 4 arms.
+        ++junctions;
+        const int child = lay(*arm, false);
+        directions_at[size_t(child)].push_back(-arm->direction);
+        const int arms = 2 + int(random() % 3);
+        for (int j = 0; j < arms && !failed; ++j) {
+          std::optional<Arm> twig = draw(child);
+          if (!twig)
+            failed = true;
+          else
+            lay(*twig, unit(random) < 0.33);
+        }
+      } else {
+        lay(*arm, unit(random) < 0.33);
+      }
+    }
+    if (failed) continue;
+    b = std::move(tree);
+    return;
+  }
+  throw InputError("random-tree: no tree without touching tubes in 100 attempts (seed " + std::to_string(seed) + ")");
+}
+
 void theta(ShapeBuilder& b) {
   int top = b.node(Vec(0, 0, 4)), bottom = b.node(Vec(0, 0, -4));
   for (int k = 0; k < 3; ++k) {
@@ -484,27 +589,29 @@ size_t default_points(const std::string& name) {
 }  // namespace
 
 std::vector<std::pair<std::string, std::string>> shape_catalogue() {
-  return {
-      {"t-shape", "the paper's T (Fig. 1): two capped arms and an open leg, radius 1"},
-      {"torus-knot", "tube along a (2,3) torus knot, 413,696 points in the paper's Fig. 7 box"},
-      {"tube-frame", "tubes along the edges of a box: 8 junctions, 5 loops, 182,274 points in the Fig. 6 box"},
-      {"tube", "a straight capped tube"},
-      {"bent-tube", "a bent pipe, open at both ends"},
-      {"torus", "a torus (a pure loop)"},
-      {"y-fork", "a Y: trunk and two thinner branches at --angle degrees"},
-      {"star", "one junction of valence --arms (3..16) at skew angles (from 7: radii and ends mixed)"},
-      {"planar-star", "one junction of valence --arms (3..16) in a plane, uneven angles, mixed radii and ends"},
-      {"octopus", "a thick mantle over eight curling arms (valence 9)"},
-      {"fan", "a trunk and three branches --angle degrees apart in a plane (default 30)"},
-      {"double-junction", "two junctions of valence 4 a short bone apart"},
-      {"theta", "two junctions joined by three chains"},
-      {"parallel-tubes", "two capped tubes whose surfaces pass half a radius apart"},
-      {"thin-branch", "a trunk with a branch a fifth of its radius"},
-      {"tight-knot", "a knot whose tube passes within one radius of itself"},
-      {"blob-limbs", "a fat body with junctions deep inside it, thin legs, a neck, a tail and an ear with no bone"},
-      {"ladder", "two rails joined by four rungs: three holes narrower than the tubes (a pierced slab)"},
-      {"stubby-limbs", "a fat body with short limbs sticking out about two of their diameters"},
-      {"tail-loop", "a fat body whose thick tail comes back into it: a loop between two junctions inside the body"}};
+  return {{"t-shape", "the paper's T (Fig. 1): two capped arms and an open leg, radius 1"},
+          {"torus-knot", "tube along a (2,3) torus knot, 413,696 points in the paper's Fig. 7 box"},
+          {"tube-frame", "tubes along the edges of a box: 8 junctions, 5 loops, 182,274 points in the Fig. 6 box"},
+          {"tube", "a straight capped tube"},
+          {"bent-tube", "a bent pipe, open at both ends"},
+          {"torus", "a torus (a pure loop)"},
+          {"y-fork", "a Y: trunk and two thinner branches at --angle degrees"},
+          {"star", "one junction of valence --arms (3..16) at skew angles (from 7: radii and ends mixed)"},
+          {"planar-star", "one junction of valence --arms (3..16) in a plane, uneven angles, mixed radii and ends"},
+          {"octopus", "a thick mantle over eight curling arms (valence 9)"},
+          {"fan", "a trunk and three branches --angle degrees apart in a plane (default 30)"},
+          {"double-junction", "two junctions of valence 4 a short bone apart"},
+          {"theta", "two junctions joined by three chains"},
+          {"parallel-tubes", "two capped tubes whose surfaces pass half a radius apart"},
+          {"thin-branch", "a trunk with a branch a fifth of its radius"},
+          {"tight-knot", "a knot whose tube passes within one radius of itself"},
+          {"blob-limbs", "a fat body with junctions deep inside it, thin legs, a neck, a tail and an ear with no bone"},
+          {"ladder", "two rails joined by four rungs: three holes narrower than the tubes (a pierced slab)"},
+          {"stubby-limbs", "a fat body with short limbs sticking out about two of their diameters"},
+          {"tail-loop", "a fat body whose thick tail comes back into it: a loop between two junctions inside the body"},
+          {"random-tree",
+           "a random tree of tubes picked by --seed: up to three junctions of valence 3 to 6, random "
+           "directions, radii and lengths, open and capped ends"}};
 }
 
 GeneratedShape generate_shape(const std::string& name, const ShapeOptions& options) {
@@ -549,6 +656,8 @@ GeneratedShape generate_shape(const std::string& name, const ShapeOptions& optio
     stubby_limbs(b);
   else if (name == "tail-loop")
     tail_loop(b);
+  else if (name == "random-tree")
+    random_tree(b, options.seed);
   else {
     std::string known;
     for (const auto& entry : shape_catalogue()) known += (known.empty() ? "" : ", ") + entry.first;

@@ -143,5 +143,36 @@ TEST(Generate, BlobLimbsHasABonelessEarAndJunctionsInsideTheBody) {
   EXPECT_EQ(junctions_inside, 2);
 }
 
+//! The random tree: the seed picks it (same seed, same tree; another seed,
+//! another); it is a tree (no cycle) with one to three junctions of valence
+//! 3 to 6, and over 20 seeds every valence from 3 to 6 comes up. That its
+//! tubes meet only at their junctions shows in the initial meshes
+//! (Issue20/RandomTrees.*: no crossing face pairs, the mesh outward).
+TEST(Generate, RandomTreesDifferBySeedAndAreTreesOfJunctionsOfValenceThreeToSix) {
+  auto tree = [](uint64_t seed) {
+    ShapeOptions o;
+    o.seed = seed;
+    return test::small_shape("random-tree", 2000, o);
+  };
+  EXPECT_EQ(tree(3).skeleton.nodes, tree(3).skeleton.nodes);
+  EXPECT_NE(tree(3).skeleton.nodes, tree(4).skeleton.nodes);
+  int sizes[7] = {};
+  for (uint64_t seed = 1; seed <= 20; ++seed) {
+    GeneratedShape shape = tree(seed);
+    EXPECT_EQ(shape.independent_cycles, 0) << "seed " << seed;
+    std::vector<int> degree(shape.skeleton.nodes.size(), 0);
+    for (const auto& e : shape.skeleton.edges) ++degree[size_t(e[0])], ++degree[size_t(e[1])];
+    int junctions = 0;
+    for (int d : degree) {
+      EXPECT_GE(d, 1);
+      EXPECT_LE(d, 6) << "seed " << seed;
+      if (d >= 3) ++sizes[d], ++junctions;
+    }
+    EXPECT_GE(junctions, 1);
+    EXPECT_LE(junctions, 3);
+  }
+  for (int valence = 3; valence <= 6; ++valence) EXPECT_GT(sizes[valence], 0) << "no junction of valence " << valence;
+}
+
 }  // namespace
 }  // namespace mcquad

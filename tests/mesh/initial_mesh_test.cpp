@@ -146,9 +146,9 @@ class JunctionTopology : public testing::TestWithParam<ShapeCase> {};
 //! many at both levels. Refined (at the default resolution and finer), no
 //! faces cross: the skew 9's pinched crease beside its block went with its
 //! moved forks (acute_junctions.h keeps forks out of other arms' tubes).
-TEST_P(JunctionTopology, HoldsAtAnyValence) {
-  const ShapeCase& c = GetParam();
-  ShapeUnderTest t(c);
+//! What JunctionTopology checks but the quads' shape; returns the mesh at
+//! the default resolution.
+InitialMesh expect_junction_topology(const ShapeCase& c, const ShapeUnderTest& t) {
   at_both_levels(c, t, [&](const InitialMesh& initial, const MeshStatistics& s) {
     size_t budget = 0;
     const SkeletonGraph& built = initial.skeleton.graph;
@@ -165,11 +165,6 @@ TEST_P(JunctionTopology, HoldsAtAnyValence) {
   });
   InitialMesh at_default = build_initial_mesh(t.graph, t.bones, t.shape.cloud, {}, c.name);
   EXPECT_EQ(intersecting_face_pairs(at_default.mesh).size(), 0u) << "at the default resolution";
-  // Issue 20 asks the fitted quads for a least scaled Jacobian of 0.2; the
-  // evolution's guard keeps each quad at least where it starts, so the start
-  // has it (the octopus's mantle had a quad at -0.01 before its poor quads
-  // were relaxed, mesh/quad_relaxation.h).
-  EXPECT_GE(measure_quad_shape(at_default.mesh).min_scaled_jacobian, 0.2);
   // Outward: with every end capped, the mesh winds once round every node.
   InitialMeshOptions capped;
   capped.ends = EndMode::kCapped;
@@ -177,6 +172,18 @@ TEST_P(JunctionTopology, HoldsAtAnyValence) {
   InitialMesh closed = build_initial_mesh(t.graph, t.bones, t.shape.cloud, capped, c.name);
   for (size_t node = 0; node < closed.skeleton.graph.node_count(); ++node)
     EXPECT_NEAR(winding_number(closed.mesh, closed.skeleton.graph.positions[node]), 1.0, 1e-6) << "node " << node;
+  return at_default;
+}
+
+TEST_P(JunctionTopology, HoldsAtAnyValence) {
+  const ShapeCase& c = GetParam();
+  ShapeUnderTest t(c);
+  InitialMesh at_default = expect_junction_topology(c, t);
+  // Issue 20 asks the fitted quads for a least scaled Jacobian of 0.2; the
+  // evolution's guard keeps each quad at least where it starts, so the start
+  // has it (the octopus's mantle had a quad at -0.01 before its poor quads
+  // were relaxed, mesh/quad_relaxation.h).
+  EXPECT_GE(measure_quad_shape(at_default.mesh).min_scaled_jacobian, 0.2);
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -188,6 +195,41 @@ INSTANTIATE_TEST_SUITE_P(
                     ShapeCase{"fan", with_angle(20), 30000}, ShapeCase{"fan", with_angle(30), 30000},
                     ShapeCase{"fan", with_angle(40), 30000}, ShapeCase{"double-junction", {}, 30000}),
     case_name);
+
+//! Random trees of tubes (generate/shapes.h, `random-tree`): up to three
+//! junctions of valence 3 to 6, random directions, radii, lengths and ends,
+//! one tree per seed. What JunctionTopology checks holds on every seed here
+//! (both levels, the default resolution, outward); the quads' shape does
+//! not yet (DISABLED_ below).
+class RandomTrees : public testing::TestWithParam<uint64_t> {};
+
+ShapeCase random_tree(uint64_t seed) {
+  ShapeOptions o;
+  o.seed = seed;
+  return ShapeCase{"random-tree", o, 20000};
+}
+
+TEST_P(RandomTrees, InitialMeshHasTheTopologyWithoutCrossings) {
+  const ShapeCase c = random_tree(GetParam());
+  ShapeUnderTest t(c);
+  expect_junction_topology(c, t);
+}
+
+//! Kept as found (2026-12-04): at the default resolution the least scaled
+//! Jacobian is under issue 20's 0.2 on 12 of seeds 1-20 (down to -0.83 on
+//! seed 2), every time within a radius of a junction node, with the blocks
+//! at 0.7 or 0.9 alike; docs/HARD_CASES.md, "Random trees".
+TEST_P(RandomTrees, DISABLED_InitialQuadsKeepAScaledJacobianOfAtLeast0_2) {
+  const ShapeCase c = random_tree(GetParam());
+  ShapeUnderTest t(c);
+  InitialMesh at_default = build_initial_mesh(t.graph, t.bones, t.shape.cloud, {}, c.name);
+  EXPECT_GE(measure_quad_shape(at_default.mesh).min_scaled_jacobian, 0.2);
+}
+
+INSTANTIATE_TEST_SUITE_P(Issue20, RandomTrees, testing::Range<uint64_t>(1, 21),
+                         [](const testing::TestParamInfo<uint64_t>& seed) {
+                           return "seed_" + std::to_string(seed.param);
+                         });
 
 //! Two separate objects in one cloud and one skeleton: a torus and, beside
 //! it, a T. One mesh component each, with each its own Euler characteristic.

@@ -132,6 +132,37 @@ INSTANTIATE_TEST_SUITE_P(Issue6, HardCases,
                            return std::string(std::get<0>(test_info.param).label) + "_" + std::get<1>(test_info.param);
                          });
 
+//! Random trees of tubes (`random-tree`, one per seed: up to three junctions
+//! of valence 3 to 6, random directions, radii and ends): robust mode's fit
+//! adds no crossing pair or fold, keeps every quad's shape where the guard
+//! keeps it, and covers the cloud (95 % within 5 % of the local radius).
+//! Issue 20's other bounds do not hold on every tree yet (docs/HARD_CASES.md,
+//! "Random trees").
+class RandomTreeFits : public ::testing::TestWithParam<std::tuple<uint64_t, const char*>> {};
+
+TEST_P(RandomTreeFits, NeverCrossAndCoverTheCloud) {
+  const auto& [seed, backend] = GetParam();
+  ShapeOptions options;
+  options.seed = seed;
+  test::Fixture f("random-tree", 20000, options);
+  std::vector<float> positions = evolve_robust(f, backend);
+  if (positions.empty()) GTEST_SKIP() << "no OpenCL device";
+  Measured start = measure(f, f.arrays.positions);
+  Measured end = measure(f, positions);
+  EXPECT_EQ(start.crossing, 0u);
+  EXPECT_EQ(end.crossing, 0u);
+  EXPECT_LE(end.folded, start.folded);
+  EXPECT_GE(end.least_jacobian, std::min(0.3, start.least_jacobian) - 1e-3);
+  EXPECT_LE(end.coverage_p95, 0.05);
+}
+
+INSTANTIATE_TEST_SUITE_P(Issue20, RandomTreeFits,
+                         ::testing::Combine(::testing::Range<uint64_t>(1, 7), ::testing::ValuesIn(kBackends)),
+                         [](const auto& test_info) {
+                           return "seed_" + std::to_string(std::get<0>(test_info.param)) + "_" +
+                                  std::get<1>(test_info.param);
+                         });
+
 //! The 15-degree Y's branches never part and are built as one tube, twice as
 //! wide at its end as the trunk's: 16 vertices around do not resolve the two
 //! branch tips beside the notch between them (coverage 9.3 % of r). One
