@@ -1,5 +1,6 @@
 #include "mesh/quad_relaxation.h"
 
+#include <algorithm>
 #include <set>
 #include <vector>
 
@@ -19,6 +20,55 @@ std::vector<int> poor_quads(const QuadMesh& mesh, double least) {
     if (corners.size() == 4 && scaled_jacobian(corners.data()) < least) poor.push_back(f.idx());
   }
   return poor;
+}
+
+//! The least scaled Jacobian of the quads round `v`.
+double least_around(const QuadMesh& mesh, QuadMesh::VertexHandle v) {
+  double least = 1;
+  for (auto f : mesh.vf_range(v)) {
+    std::vector<Eigen::Vector3d> corners = face_corners(mesh, f);
+    if (corners.size() == 4) least = std::min(least, scaled_jacobian(corners.data()));
+  }
+  return least;
+}
+
+//! Folded edges among the edges of the faces round `v` (some counted twice).
+size_t folds_around(const QuadMesh& mesh, QuadMesh::VertexHandle v) {
+  size_t folds = 0;
+  for (auto f : mesh.vf_range(v))
+    for (auto e : mesh.fe_range(f)) folds += is_folded(mesh, e);
+  return folds;
+}
+
+//! One round of moving each poor quad's corners toward where they would
+//! make it a parallelogram (a + c - d for corner v between a and c, d
+//! opposite), the whole way, half or a quarter, whichever first raises the
+//! least scaled Jacobian of the quads round v and folds none of their
+//! edges. Returns whether any moved.
+bool straighten_poor_corners(QuadMesh& mesh, const std::vector<int>& poor) {
+  bool moved = false;
+  for (int f : poor) {
+    std::vector<QuadMesh::VertexHandle> corner;
+    for (auto v : mesh.fv_range(mesh.face_handle(f))) corner.push_back(v);
+    if (corner.size() != 4) continue;
+    for (size_t k = 0; k < 4; ++k) {
+      const QuadMesh::VertexHandle v = corner[k];
+      const QuadMesh::Point p = mesh.point(v);
+      const QuadMesh::Point target =
+          mesh.point(corner[(k + 1) % 4]) + mesh.point(corner[(k + 3) % 4]) - mesh.point(corner[(k + 2) % 4]);
+      const double before = least_around(mesh, v);
+      const size_t folds = folds_around(mesh, v);
+      for (double step : {1.0, 0.5, 0.25}) {
+        mesh.set_point(v, p + step * (target - p));
+        if (least_around(mesh, v) > before + 1e-6 && folds_around(mesh, v) <= folds) {
+          moved = true;
+          break;
+        }
+        mesh.set_point(v, p);
+      }
+    }
+  }
+  return moved;
 }
 
 }  // namespace
@@ -52,6 +102,20 @@ size_t relax_poor_quads(QuadMesh& mesh, double least, int rounds) {
     } else {
       ++since_fewest;
     }
+  }
+  // What smoothing leaves (a corner near 180 degrees beside a junction's
+  // irregular vertex, where the neighbours' mean is no better): the corners
+  // moved toward a parallelogram, round by round, each round undone if it
+  // makes faces cross or fold.
+  for (int round = 0; round < rounds && !poor.empty(); ++round) {
+    std::vector<QuadMesh::Point> kept;
+    for (auto v : mesh.vertices()) kept.push_back(mesh.point(v));
+    if (!straighten_poor_corners(mesh, poor)) break;
+    if (tracker.pairs(mesh).size() > crossings || folded_edges(mesh) > folds) {
+      for (auto v : mesh.vertices()) mesh.set_point(v, kept[size_t(v.idx())]);
+      break;
+    }
+    poor = poor_quads(mesh, least);
   }
   return poor.size();
 }

@@ -16,7 +16,12 @@ namespace mcquad {
 //! fold that makes (relax_folds); a round that still leaves faces crossing
 //! or folded that were not before is undone and tried on the corners alone,
 //! and where that fails too, the relaxation stops. At most `rounds` rounds, and it gives up after ten without fewer
-//! such quads. Returns how many are left.
+//! such quads. What smoothing leaves (a corner near 180 degrees beside a
+//! junction's irregular vertex, where the neighbours' mean is no better) is
+//! then straightened: each poor quad's corners move toward where they would
+//! make it a parallelogram, as far as raises the least scaled Jacobian of
+//! the quads round them without folding their edges, round by round (a
+//! round that makes faces cross is undone). Returns how many are left.
 size_t relax_poor_quads(QuadMesh& mesh, double least, int rounds = 50);
 
 }  // namespace mcquad

@@ -198,9 +198,8 @@ INSTANTIATE_TEST_SUITE_P(
 
 //! Random trees of tubes (generate/shapes.h, `random-tree`): up to three
 //! junctions of valence 3 to 6, random directions, radii, lengths and ends,
-//! one tree per seed. What JunctionTopology checks holds on every seed here
-//! (both levels, the default resolution, outward); the quads' shape does
-//! not yet (DISABLED_ below).
+//! one tree per seed. What JunctionTopology checks holds on seeds 1-20, the
+//! quads' least scaled Jacobian of 0.2 on all but seed 2 (kept below).
 class RandomTrees : public testing::TestWithParam<uint64_t> {};
 
 ShapeCase random_tree(uint64_t seed) {
@@ -215,16 +214,24 @@ TEST_P(RandomTrees, InitialMeshHasTheTopologyWithoutCrossings) {
   expect_junction_topology(c, t);
 }
 
-//! Kept as found (2026-12-04): at the default resolution the least scaled
-//! Jacobian is under issue 20's 0.2 on 12 of seeds 1-20 (down to -0.83 on
-//! seed 2), every time within a radius of a junction node, with the blocks
-//! at 0.7 or 0.9 alike; docs/HARD_CASES.md, "Random trees".
-TEST_P(RandomTrees, DISABLED_InitialQuadsKeepAScaledJacobianOfAtLeast0_2) {
-  const ShapeCase c = random_tree(GetParam());
+//! Before the poor quads' corners were straightened (mesh/quad_relaxation.h)
+//! 12 of the 20 seeds had quads under 0.2 here, down to -0.83, all within a
+//! radius of a junction node.
+void expect_quads_of_at_least_0_2(uint64_t seed) {
+  const ShapeCase c = random_tree(seed);
   ShapeUnderTest t(c);
   InitialMesh at_default = build_initial_mesh(t.graph, t.bones, t.shape.cloud, {}, c.name);
   EXPECT_GE(measure_quad_shape(at_default.mesh).min_scaled_jacobian, 0.2);
 }
+
+TEST_P(RandomTrees, InitialQuadsKeepAScaledJacobianOfAtLeast0_2) {
+  if (GetParam() == 2) GTEST_SKIP() << "kept as found: RandomTrees.DISABLED_SeedTwoKeepsAQuadUnder0_2";
+  expect_quads_of_at_least_0_2(GetParam());
+}
+
+//! Kept as found (2026-12-04): seed 2's least scaled Jacobian is 0.10 with
+//! the straightening, within a radius of a junction node.
+TEST(RandomTrees, DISABLED_SeedTwoKeepsAQuadUnder0_2) { expect_quads_of_at_least_0_2(2); }
 
 INSTANTIATE_TEST_SUITE_P(Issue20, RandomTrees, testing::Range<uint64_t>(1, 21),
                          [](const testing::TestParamInfo<uint64_t>& seed) {
