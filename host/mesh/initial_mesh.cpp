@@ -195,16 +195,14 @@ class MeshAssembler {
   //! `distance` along it (on its last bone where it reaches a junction
   //! sooner); 0 where it ends sooner.
   double bone_radius_along(int node, int next, double distance) const {
-    for (int previous = node;;) {
-      distance -= (graph_.positions[size_t(next)] - graph_.positions[size_t(previous)]).norm();
-      if (distance <= 0 || graph_.kind(next) == NodeKind::kJunction || next == node)
-        return tube_radius(previous, next, 1.0);
-      if (graph_.kind(next) == NodeKind::kEnd) return 0;
-      const auto& around = graph_.neighbours[size_t(next)];
-      const int after = around[0] == previous ? around[1] : around[0];
-      previous = next;
-      next = after;
+    const std::vector<int> chain = graph_.chain_from(node, next);
+    for (size_t k = 1; k < chain.size(); ++k) {
+      distance -= (graph_.positions[size_t(chain[k])] - graph_.positions[size_t(chain[k - 1])]).norm();
+      const bool last = k + 1 == chain.size();
+      if (distance <= 0 || (last && graph_.kind(chain[k]) != NodeKind::kEnd))
+        return tube_radius(chain[k - 1], chain[k], 1.0);
     }
+    return 0;  // the limb ends sooner
   }
 
   //! How far along bone k of a junction its tube rejoins the skeleton: past

@@ -13,22 +13,23 @@ namespace {
 
 constexpr int kRoundsWithoutProgress = 10;
 
+//! The scaled Jacobian of face `f` if it is a quad; 1 (nothing to relax) if not.
+double quad_jacobian(const QuadMesh& mesh, QuadMesh::FaceHandle f) {
+  std::vector<Eigen::Vector3d> corners = face_corners(mesh, f);
+  return corners.size() == 4 ? scaled_jacobian(corners.data()) : 1.0;
+}
+
 std::vector<int> poor_quads(const QuadMesh& mesh, double least) {
   std::vector<int> poor;
-  for (auto f : mesh.faces()) {
-    std::vector<Eigen::Vector3d> corners = face_corners(mesh, f);
-    if (corners.size() == 4 && scaled_jacobian(corners.data()) < least) poor.push_back(f.idx());
-  }
+  for (auto f : mesh.faces())
+    if (quad_jacobian(mesh, f) < least) poor.push_back(f.idx());
   return poor;
 }
 
 //! The least scaled Jacobian of the quads round `v`.
 double least_around(const QuadMesh& mesh, QuadMesh::VertexHandle v) {
   double least = 1;
-  for (auto f : mesh.vf_range(v)) {
-    std::vector<Eigen::Vector3d> corners = face_corners(mesh, f);
-    if (corners.size() == 4) least = std::min(least, scaled_jacobian(corners.data()));
-  }
+  for (auto f : mesh.vf_range(v)) least = std::min(least, quad_jacobian(mesh, f));
   return least;
 }
 
@@ -80,18 +81,26 @@ size_t relax_poor_quads(QuadMesh& mesh, double least, int rounds) {
   const size_t crossings = tracker.pairs(mesh).size(), folds = folded_edges(mesh);
   size_t fewest = poor.size();
   int since_fewest = 0;
-  // Each poor quad's corners and their ring are smoothed; where that makes
-  // faces cross, the corners alone; where even that does, nothing more.
-  auto smooth = [&](int rings) {
-    std::set<int> region = corners_of(mesh, poor);
-    grow_region(mesh, region, rings);
-    std::vector<QuadMesh::Point> kept;  // relax_folds may move vertices beyond the region
+  // Runs `move` (which says whether it moved anything) and undoes it where
+  // it left faces crossing or folded that were not before.
+  auto kept_unless_worse = [&](auto&& move) {
+    std::vector<QuadMesh::Point> kept;  // relax_folds may move vertices beyond the poor quads
     for (auto v : mesh.vertices()) kept.push_back(mesh.point(v));
-    relax_vertices(mesh, region);
-    if (folded_edges(mesh) > folds) relax_folds(mesh);
+    if (!move()) return false;
     if (tracker.pairs(mesh).size() <= crossings && folded_edges(mesh) <= folds) return true;
     for (auto v : mesh.vertices()) mesh.set_point(v, kept[size_t(v.idx())]);
     return false;
+  };
+  // Each poor quad's corners and their ring are smoothed; where that makes
+  // faces cross, the corners alone; where even that does, nothing more.
+  auto smooth = [&](int rings) {
+    return kept_unless_worse([&] {
+      std::set<int> region = corners_of(mesh, poor);
+      grow_region(mesh, region, rings);
+      relax_vertices(mesh, region);
+      if (folded_edges(mesh) > folds) relax_folds(mesh);
+      return true;
+    });
   };
   for (int round = 0; round < rounds && !poor.empty() && since_fewest < kRoundsWithoutProgress; ++round) {
     if (!smooth(1) && !smooth(0)) break;
@@ -105,16 +114,10 @@ size_t relax_poor_quads(QuadMesh& mesh, double least, int rounds) {
   }
   // What smoothing leaves (a corner near 180 degrees beside a junction's
   // irregular vertex, where the neighbours' mean is no better): the corners
-  // moved toward a parallelogram, round by round, each round undone if it
-  // makes faces cross or fold.
+  // moved toward a parallelogram, round by round, until a round moves none
+  // or makes faces cross or fold (that round undone).
   for (int round = 0; round < rounds && !poor.empty(); ++round) {
-    std::vector<QuadMesh::Point> kept;
-    for (auto v : mesh.vertices()) kept.push_back(mesh.point(v));
-    if (!straighten_poor_corners(mesh, poor)) break;
-    if (tracker.pairs(mesh).size() > crossings || folded_edges(mesh) > folds) {
-      for (auto v : mesh.vertices()) mesh.set_point(v, kept[size_t(v.idx())]);
-      break;
-    }
+    if (!kept_unless_worse([&] { return straighten_poor_corners(mesh, poor); })) break;
     poor = poor_quads(mesh, least);
   }
   return poor.size();

@@ -47,18 +47,6 @@ double limb_radius(const EditableSkeleton& skeleton, const std::vector<int>& cha
   return first > kFatFirstBone * median ? median : first;
 }
 
-//! The chain of nodes from junction `start` through `next` to the next
-//! non-regular node (inclusive).
-std::vector<int> chain_from(const SkeletonGraph& graph, int start, int next) {
-  std::vector<int> chain{start, next};
-  while (graph.kind(chain.back()) == NodeKind::kRegular && chain.back() != start) {
-    int current = chain.back(), previous = chain[chain.size() - 2];
-    int a = graph.neighbours[current][0], b = graph.neighbours[current][1];
-    chain.push_back(a == previous ? b : a);
-  }
-  return chain;
-}
-
 double chain_length(const SkeletonGraph& graph, const std::vector<int>& chain) {
   double length = 0;
   for (size_t k = 0; k + 1 < chain.size(); ++k)
@@ -184,7 +172,7 @@ bool lands_in_another_tube(const EditableSkeleton& skeleton, const SkeletonGraph
   for (int next : graph.neighbours[junction]) {
     if (next == pair[0] || next == pair[1]) continue;
     const double distance = segment_distance(point, graph.positions[junction], graph.positions[next], nullptr);
-    if (distance < limb_radius(skeleton, chain_from(graph, junction, next)) + clearance) return true;
+    if (distance < limb_radius(skeleton, graph.chain_from(junction, next)) + clearance) return true;
   }
   return false;
 }
@@ -242,7 +230,7 @@ TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssign
     if (best_node < 0) break;
 
     EditableSkeleton skeleton{g.positions, g.edges, result.bone_radius, std::vector<bool>(g.edges.size(), false)};
-    std::vector<int> chain_i = chain_from(g, best_node, best_i), chain_j = chain_from(g, best_node, best_j);
+    std::vector<int> chain_i = g.chain_from(best_node, best_i), chain_j = g.chain_from(best_node, best_j);
     double ri = limb_radius(skeleton, chain_i), rj = limb_radius(skeleton, chain_j);
     double r = 0.5 * (ri + rj);
     double crotch = r / std::sin(best_angle / 2);          // along the bisector

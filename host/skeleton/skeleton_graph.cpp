@@ -64,6 +64,16 @@ std::vector<std::vector<int>> SkeletonGraph::node_bones() const {
   return bones;
 }
 
+std::vector<int> SkeletonGraph::chain_from(int start, int next) const {
+  std::vector<int> chain{start, next};
+  while (kind(chain.back()) == NodeKind::kRegular && chain.back() != start) {
+    int current = chain.back(), previous = chain[chain.size() - 2];
+    int a = neighbours[size_t(current)][0], b = neighbours[size_t(current)][1];
+    chain.push_back(a == previous ? b : a);
+  }
+  return chain;
+}
+
 std::vector<Branch> SkeletonGraph::branches() const {
   std::vector<Branch> result;
   std::set<std::pair<int, int>> used;

@@ -34,6 +34,9 @@ struct SkeletonGraph {
   int independent_cycles(int component_index) const;
   //! Branches: chains between non-regular nodes, and pure loops.
   std::vector<Branch> branches() const;
+  //! The chain of nodes from non-regular node `start` through its neighbour
+  //! `next` to the next non-regular node, or back to `start` (both inclusive).
+  std::vector<int> chain_from(int start, int next) const;
   //! Per node, the bones (indices into edges) that end there.
   std::vector<std::vector<int>> node_bones() const;
 };
