@@ -46,11 +46,13 @@ __kernel void vertex_errors(__global const float* positions, __global const floa
                             __global const int* node_children, __global const uint* cell_offsets,
                             __global const float* points, __global const float* cell_centroids,
                             __global const float* cell_normals, const float bounds_inset, __global float* errors,
-                            const uint vertex_count) {
+                            __global int* nearest_cells, const uint vertex_count) {
   uint v = get_global_id(0);
   if (v >= vertex_count) return;
   mcq_cells cells = {node_bounds, node_children, cell_offsets, points, cell_centroids, cell_normals, 0, bounds_inset};
-  errors[v] = mcq_vertex_error(cells, mcq_load3(positions, v));
+  int nearest_cell = nearest_cells[v];
+  errors[v] = mcq_vertex_error(cells, mcq_load3(positions, v), &nearest_cell);
+  nearest_cells[v] = nearest_cell;
 }
 
 /* Sums `count` floats into partial sums, one per work-group, by a tree

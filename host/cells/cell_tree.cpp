@@ -344,15 +344,20 @@ CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size, bool pad_box
   return cells;
 }
 
-double mean_vertex_error(const CellTree& cells, const std::vector<float>& positions) {
+double mean_vertex_error(const CellTree& cells, const std::vector<float>& positions, std::vector<int>* nearest_cells) {
   const device::mcq_cells view = cells_view(cells);
   const size_t vertices = positions.size() / 3;
+  if (nearest_cells) nearest_cells->resize(vertices, -1);
   // Each vertex's error on any core, then summed in vertex order: the same
   // bits on every run and every machine.
   std::vector<float> errors(vertices);
 #pragma omp parallel for schedule(static) if (vertices > 1024)
-  for (long v = 0; v < long(vertices); ++v)
-    errors[size_t(v)] = device::mcq_vertex_error(view, device::mcq_load3(positions.data(), uint32_t(v)));
+  for (long v = 0; v < long(vertices); ++v) {
+    int nearest_cell = nearest_cells ? (*nearest_cells)[size_t(v)] : -1;
+    errors[size_t(v)] =
+        device::mcq_vertex_error(view, device::mcq_load3(positions.data(), uint32_t(v)), &nearest_cell);
+    if (nearest_cells) (*nearest_cells)[size_t(v)] = nearest_cell;
+  }
   double sum = 0;
   for (float e : errors) sum += e;
   return vertices ? sum / double(vertices) : 0.0;

@@ -45,7 +45,11 @@ inline device::mcq_cells cells_view(const CellTree& cells) {
 //! The paper's error level e-bar: the mean over the vertices (`positions`,
 //! 3 floats each) of the distance to the plane of the cell holding the
 //! nearest cloud point. The serial backend and the metrics both take it here.
-double mean_vertex_error(const CellTree& cells, const std::vector<float>& positions);
+//! `nearest_cells`, when given (one per vertex, -1 for none), holds a guess
+//! at each vertex's nearest cell and receives the cell found: the answer is
+//! the same, found faster where the guess is near (mcq_vertex_error).
+double mean_vertex_error(const CellTree& cells, const std::vector<float>& positions,
+                         std::vector<int>* nearest_cells = nullptr);
 
 //! Builds the cells with at most `leaf_size` points each. Leaf boxes are
 //! padded by the cloud's median nearest-neighbour distance unless

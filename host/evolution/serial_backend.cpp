@@ -11,6 +11,7 @@ void SerialBackend::load(const CellTree& cells, const MeshArrays& mesh, const Sk
   normals_.resize(positions_.size());
   update_normals();
   initial_normals_ = normals_;
+  nearest_cells_.assign(mesh.vertex_count(), -1);
 }
 
 void SerialBackend::update_normals() {
@@ -51,6 +52,6 @@ void SerialBackend::set_positions(const std::vector<float>& positions) {
   update_normals();
 }
 
-double SerialBackend::error_level() { return mean_vertex_error(*cells_, positions_); }
+double SerialBackend::error_level() { return mean_vertex_error(*cells_, positions_, &nearest_cells_); }
 
 }  // namespace mcquad

@@ -26,6 +26,7 @@ class SerialBackend : public EvolutionBackend {
   MeshArrays mesh_;
   std::vector<float> positions_, next_positions_, normals_;
   std::vector<float> initial_normals_;  //!< at load; the initial positions stay in mesh_
+  std::vector<int> nearest_cells_;      //!< each vertex's nearest cell at the last error level, a guess for the next
 };
 
 }  // namespace mcquad

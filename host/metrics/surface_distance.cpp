@@ -34,7 +34,7 @@ std::vector<double> mesh_to_cloud_distances(const QuadMesh& mesh, const CellTree
     float distance2 = 0;
     device::mcq_nearest_point_cell(cells.node_bounds.data(), cells.node_children.data(), cells.cell_offsets.data(),
                                    cells.points.data(), cells.bounds_inset,
-                                   device::mcq_make_vec3(float(p[0]), float(p[1]), float(p[2])), &distance2);
+                                   device::mcq_make_vec3(float(p[0]), float(p[1]), float(p[2])), -1, &distance2);
     out[size_t(i)] = std::sqrt(double(distance2));
   }
   return out;

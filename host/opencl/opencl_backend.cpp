@@ -72,6 +72,8 @@ void OpenCLBackend::load(const CellTree& cells, const MeshArrays& mesh, const Sk
     next_positions_ = Floats(context_, mesh.positions.size());
     normals_ = Floats(context_, mesh.positions.size());
     errors_ = Floats(context_, vertex_count_);
+    nearest_cells_ = DeviceArray<int32_t>(context_, vertex_count_);
+    nearest_cells_.write(queue_, std::vector<int32_t>(vertex_count_, -1));  // blocking: the vector is a temporary
     reduce_group_size_ = std::min<size_t>(256, device_.device.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>());
     // Power of two for the tree reduction.
     while (reduce_group_size_ & (reduce_group_size_ - 1)) reduce_group_size_ &= reduce_group_size_ - 1;
@@ -118,7 +120,7 @@ void OpenCLBackend::step(const device::mcq_step_params& params) {
 double OpenCLBackend::error_level() {
   try {
     set_kernel_args(errors_kernel_, positions_, node_bounds_, node_children_, cell_offsets_, points_, cell_centroids_,
-                    cell_normals_, bounds_inset_, errors_, vertex_count_);
+                    cell_normals_, bounds_inset_, errors_, nearest_cells_, vertex_count_);
     queue_.enqueueNDRangeKernel(errors_kernel_, cl::NullRange, global_range(vertex_count_, kGroupSize),
                                 cl::NDRange(kGroupSize));
     set_kernel_args(reduce_kernel_, errors_, partial_sums_, cl::Local(reduce_group_size_ * sizeof(float)),

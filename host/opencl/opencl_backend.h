@@ -40,6 +40,7 @@ class OpenCLBackend : public EvolutionBackend {
   cl::Kernel evolve_kernel_, normals_kernel_, errors_kernel_, reduce_kernel_, relax_kernel_;
   Floats node_bounds_, points_, cell_centroids_, cell_normals_, cell_facing_;
   DeviceArray<int32_t> node_children_;
+  DeviceArray<int32_t> nearest_cells_;  //!< each vertex's nearest cell at the last error level, a guess for the next
   Indices cell_offsets_, faces_, vertex_face_offsets_, vertex_faces_, boundary_;
   Floats positions_, next_positions_, normals_, errors_, partial_sums_, total_;
   Floats initial_positions_, initial_normals_;  //!< where the evolution started, for hole filling

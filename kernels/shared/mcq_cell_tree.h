@@ -380,14 +380,33 @@ MCQ_FN float mcq_inset_box_distance_squared(const MCQ_GLOBAL float* node_bounds,
   return dx * dx + dy * dy + dz * dz;
 }
 
+/* The nearest of `cell`'s points to q so far: *best_d, *best_point and
+ * *best_cell move to a nearer point (ties to the lower point index). */
+MCQ_FN void mcq_nearest_in_cell(const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points, int cell,
+                                mcq_vec3 q, float* best_d, mcq_uint* best_point, int* best_cell) {
+  for (mcq_uint p = cell_offsets[cell]; p < cell_offsets[cell + 1]; ++p) {
+    mcq_vec3 d = mcq_sub(mcq_load3(points, p), q);
+    float d2 = mcq_dot(d, d);
+    if (d2 < *best_d || (d2 == *best_d && p < *best_point)) {
+      *best_d = d2;
+      *best_point = p;
+      *best_cell = cell;
+    }
+  }
+}
+
 /* The cell holding the cloud point nearest to q (ties to the lower point
  * index, i.e. the lower cell); the squared distance goes to *distance2.
  * `inset`: how far inside every box its points lie at least (the rays'
  * padding, 0 for tight boxes); the search prunes on the boxes shrunk by it,
- * which on the knot visits a third of the leaves the padded boxes do. */
+ * which on the knot visits a third of the leaves the padded boxes do.
+ * `start_cell` (-1: none) is a guess, such as the answer for where the
+ * vertex stood one step before: its points bound the search from the start,
+ * so far fewer boxes pass. The answer is the same with any guess: no box
+ * that holds a point at least as near as the best so far is pruned. */
 MCQ_FN int mcq_nearest_point_cell(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
                                   const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points, float inset,
-                                  mcq_vec3 q, float* distance2) {
+                                  mcq_vec3 q, int start_cell, float* distance2) {
   int stack_node[MCQ_STACK_SIZE];
   float stack_d[MCQ_STACK_SIZE];
   int top = 1;
@@ -396,22 +415,14 @@ MCQ_FN int mcq_nearest_point_cell(const MCQ_GLOBAL float* node_bounds, const MCQ
   float best_d = MCQ_INFINITY;
   mcq_uint best_point = 0xFFFFFFFFu;
   int best_cell = -1;
+  if (start_cell >= 0) mcq_nearest_in_cell(cell_offsets, points, start_cell, q, &best_d, &best_point, &best_cell);
   while (top > 0) {
     --top;
     int node = stack_node[top];
     if (stack_d[top] > best_d) continue;
     int left = node_children[2 * node];
     if (left < 0) {
-      int cell = -1 - left;
-      for (mcq_uint p = cell_offsets[cell]; p < cell_offsets[cell + 1]; ++p) {
-        mcq_vec3 d = mcq_sub(mcq_load3(points, p), q);
-        float d2 = mcq_dot(d, d);
-        if (d2 < best_d || (d2 == best_d && p < best_point)) {
-          best_d = d2;
-          best_point = p;
-          best_cell = cell;
-        }
-      }
+      mcq_nearest_in_cell(cell_offsets, points, -1 - left, q, &best_d, &best_point, &best_cell);
       continue;
     }
     int right = node_children[2 * node + 1];

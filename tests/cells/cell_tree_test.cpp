@@ -205,11 +205,22 @@ TEST_P(NearestPointCell, MatchesBruteForce) {
     float d2;
     int cell =
         device::mcq_nearest_point_cell(cells.node_bounds.data(), cells.node_children.data(), cells.cell_offsets.data(),
-                                       cells.points.data(), cells.bounds_inset, vec(query), &d2);
+                                       cells.points.data(), cells.bounds_inset, vec(query), -1, &d2);
     ASSERT_GE(cell, 0);
     EXPECT_EQ(d2, best);
     EXPECT_LE(cells.cell_offsets[size_t(cell)], best_point);
     EXPECT_GT(cells.cell_offsets[size_t(cell) + 1], best_point);
+    // A guess (the evolution's last answer for the vertex) changes only how
+    // fast: the same cell and distance from any cell, the answer included.
+    std::uniform_int_distribution<int> any_cell(0, int(cells.cell_count()) - 1);
+    for (int guess : {cell, any_cell(random), std::max(0, cell - 1)}) {
+      float guessed_d2;
+      EXPECT_EQ(device::mcq_nearest_point_cell(cells.node_bounds.data(), cells.node_children.data(),
+                                               cells.cell_offsets.data(), cells.points.data(), cells.bounds_inset,
+                                               vec(query), guess, &guessed_d2),
+                cell);
+      EXPECT_EQ(guessed_d2, d2);
+    }
   }
 }
 
