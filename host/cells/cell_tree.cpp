@@ -354,8 +354,7 @@ double mean_vertex_error(const CellTree& cells, const std::vector<float>& positi
 #pragma omp parallel for schedule(static) if (vertices > 1024)
   for (long v = 0; v < long(vertices); ++v) {
     int nearest_cell = nearest_cells ? (*nearest_cells)[size_t(v)] : -1;
-    errors[size_t(v)] =
-        device::mcq_vertex_error(view, device::mcq_load3(positions.data(), uint32_t(v)), &nearest_cell);
+    errors[size_t(v)] = device::mcq_vertex_error(view, device::mcq_load3(positions.data(), uint32_t(v)), &nearest_cell);
     if (nearest_cells) (*nearest_cells)[size_t(v)] = nearest_cell;
   }
   double sum = 0;
