@@ -164,17 +164,104 @@ double distance_to_chain(const SkeletonGraph& graph, const std::vector<int>& cha
 }
 
 //! Whether `point` lies within `clearance` of the tube of a bone of
-//! `junction` other than `pair`: the junction's bones crowd round it (a star
+//! `junction` other than the `forking` ones: the junction's bones crowd round it (a star
 //! of many arms), and a fork moved to `point` would sit in the middle of
 //! another limb, its block tangled with that limb's tube.
 bool lands_in_another_tube(const EditableSkeleton& skeleton, const SkeletonGraph& graph, int junction,
-                           const std::array<int, 2>& pair, const Eigen::Vector3d& point, double clearance) {
+                           const std::vector<int>& forking, const Eigen::Vector3d& point, double clearance) {
   for (int next : graph.neighbours[junction]) {
-    if (next == pair[0] || next == pair[1]) continue;
+    if (std::find(forking.begin(), forking.end(), next) != forking.end()) continue;
     const double distance = segment_distance(point, graph.positions[junction], graph.positions[next], nullptr);
     if (distance < limb_radius(skeleton, graph.chain_from(junction, next)) + clearance) return true;
   }
   return false;
+}
+
+//! The unit direction from `node` to its neighbour `next`.
+Eigen::Vector3d bone_direction(const SkeletonGraph& graph, int node, int next) {
+  return (graph.positions[next] - graph.positions[node]).normalized();
+}
+
+//! The acute pair `pair` of `node`'s bones with every other bone of it that
+//! forks acutely (below `min_angle`) from each bone taken so far: a fan of
+//! limbs that leave one junction side by side. Its limbs part from each
+//! other only well up their bones, and moving the pair alone leaves the
+//! fan's other limb forking from the old junction at a crotch far below the
+//! cloud's (the 30-degree fan's crease sank a tube radius into the trunk).
+//! Only limbs that run to an end or another junction, each chain with room
+//! to be cut, and a fan that leaves at least one other bone of the junction
+//! qualify; otherwise just the pair.
+std::vector<int> fan_of(const SkeletonGraph& graph, int node, const std::array<int, 2>& pair, double min_angle) {
+  std::vector<int> fan = {pair[0], pair[1]};
+  for (int next : graph.neighbours[node]) {
+    if (next == pair[0] || next == pair[1]) continue;
+    bool acute_to_all = true;
+    for (int member : fan) {
+      double cosine = bone_direction(graph, node, next).dot(bone_direction(graph, node, member));
+      if (std::acos(std::clamp(cosine, -1.0, 1.0)) >= min_angle) acute_to_all = false;
+    }
+    if (acute_to_all) fan.push_back(next);
+  }
+  if (fan.size() + 1 > graph.neighbours[node].size()) return {pair[0], pair[1]};
+  return fan;
+}
+
+//! Whether moving the fan's most acute pair alone (up `rise` along its
+//! bisector) would leave another limb of the fan forking from the
+//! shortened stem without the room to move in turn: pair by pair, a fan
+//! moves as a cascade of junctions where its limbs part at different
+//! heights (the 20-degree fan), and stalls where they part together (the
+//! 30-degree fan's third limb had 0.35 of the room its move needed, under
+//! kLeastPartialMove); then the fan moves at once (spread_fan).
+bool cascade_stalls(const EditableSkeleton& skeleton, const SkeletonGraph& graph, int node,
+                    const std::array<int, 2>& pair, const std::vector<int>& fan, double rise) {
+  const Eigen::Vector3d stem =
+      (bone_direction(graph, node, pair[0]) + bone_direction(graph, node, pair[1])).normalized();
+  const double stem_radius = std::max(limb_radius(skeleton, graph.chain_from(node, pair[0])),
+                                      limb_radius(skeleton, graph.chain_from(node, pair[1])));
+  for (int next : fan) {
+    if (next == pair[0] || next == pair[1]) continue;
+    const std::vector<int> chain = graph.chain_from(node, next);
+    const double r = 0.5 * (stem_radius + limb_radius(skeleton, chain));
+    const double angle = std::acos(std::clamp(stem.dot(bone_direction(graph, node, next)), -1.0, 1.0));
+    const double along = r / std::sin(angle / 2) / std::cos(angle / 2) + r;
+    const double room = std::min(chain_length(graph, chain), rise) - r;
+    if (room < kLeastPartialMove * along) return true;
+  }
+  return false;
+}
+
+//! Whether every chain of the fan is longer than `room` (the cut plus a
+//! radius to spare), so that each limb keeps a bone past its cut.
+bool fan_has_room(const SkeletonGraph& graph, int node, const std::vector<int>& fan, double room) {
+  for (int next : fan)
+    if (chain_length(graph, graph.chain_from(node, next)) < room) return false;
+  return true;
+}
+
+//! Moves a fan of three limbs or more (fan_of) from `node` to a new junction
+//! `rise` up their mean direction, each chain cut `along` its length: the
+//! pair's move (spread_acute_junctions) for all of the fan's limbs at once.
+//! Each limb then leaves the new junction from where it parts from its
+//! neighbours. Returns the new junction's node.
+int spread_fan(EditableSkeleton& skeleton, const SkeletonGraph& graph, int node, const std::vector<int>& fan,
+               double rise, double along) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  double widest = 0;
+  for (int next : fan) {
+    mean += bone_direction(graph, node, next);
+    widest = std::max(widest, limb_radius(skeleton, graph.chain_from(node, next)));
+  }
+  skeleton.nodes.emplace_back(graph.positions[node] + mean.normalized() * rise);
+  int junction = int(skeleton.nodes.size()) - 1;
+  skeleton.add_edge(node, junction, widest);
+  for (int next : fan) {
+    std::vector<int> chain = graph.chain_from(node, next);
+    double r = limb_radius(skeleton, chain);
+    int cut = cut_chain(skeleton, graph, chain, along);
+    skeleton.add_edge(junction, cut, r);
+  }
+  return junction;
 }
 
 }  // namespace
@@ -238,6 +325,20 @@ TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssign
     double rise = std::max(crotch - r, 0.25 * crotch);     // the fork's distance up the bisector
     Eigen::Vector3d di = (g.positions[best_i] - g.positions[best_node]).normalized();
     Eigen::Vector3d dj = (g.positions[best_j] - g.positions[best_node]).normalized();
+    std::vector<int> fan = fan_of(g, best_node, {best_i, best_j}, min_angle);
+    Eigen::Vector3d fan_direction = Eigen::Vector3d::Zero();
+    for (int next : fan) fan_direction += bone_direction(g, best_node, next);
+    if (fan.size() > 2 && cascade_stalls(skeleton, g, best_node, {best_i, best_j}, fan, rise) &&
+        fan_has_room(g, best_node, fan, along + r) &&
+        !lands_in_another_tube(skeleton, g, best_node, fan, g.positions[best_node] + fan_direction.normalized() * rise,
+                               kForkClearance * r)) {
+      created.push_back(skeleton.nodes[size_t(spread_fan(skeleton, g, best_node, fan, rise, along))]);
+      std::vector<double> radius;
+      result.graph = rebuild(skeleton, radius, source);
+      result.bone_radius = radius;
+      kept.clear();
+      continue;
+    }
     const double room = std::min(chain_length(g, chain_i), chain_length(g, chain_j)) - r;
     if (along > room || chain_i.back() == chain_j.back()) {
       if (tubes_never_part(g, chain_i, chain_j, ri, rj)) {

@@ -170,6 +170,44 @@ TEST(AcuteJunctions, AForkShortOfRoomMovesPartway) {
   }
 }
 
+//! A fan of three limbs 30 degrees apart parts together, where its two
+//! acute pairs' crotches lie (2.4 up): moved pair by pair, the first pair's
+//! new junction left the third limb too little room to move in turn, and its
+//! crease sank a tube radius into the trunk (docs/HARD_CASES.md). The fan
+//! moves at once: one junction of the three limbs and the stem (the old
+//! junction becomes a node of the trunk), on the middle limb's axis, each
+//! pair of its limbs 55 degrees apart or more. At 20 degrees the limbs part
+//! at different heights and the cascade of two junctions, with room for
+//! each, stays.
+TEST(AcuteJunctions, AFanWhoseLimbsPartTogetherMovesAtOnce) {
+  for (double angle : {30.0, 20.0}) {
+    ShapeOptions options;
+    options.angle_degrees = angle;
+    const auto [shape, graph, bones] = test::ShapeWithBones("fan", 20000, options);
+    TubeSkeleton spread = spread_acute_junctions(graph, bones, 75.0 * M_PI / 180.0, "fan");
+    if (angle == 20.0) {
+      EXPECT_EQ(junction_count(spread.graph), 2) << "the 20-degree fan's cascade";
+      continue;
+    }
+    ASSERT_EQ(junction_count(spread.graph), 1);
+    for (size_t v = 0; v < spread.graph.node_count(); ++v) {
+      const Eigen::Vector3d& p = spread.graph.positions[v];
+      if (spread.graph.kind(int(v)) != NodeKind::kJunction) continue;
+      EXPECT_EQ(spread.graph.degree(int(v)), 4);
+      EXPECT_NEAR(p.x(), 0.0, 1e-9);
+      EXPECT_GT(p.z(), 1.5);
+      EXPECT_LT(p.z(), 2.4);
+      const auto& n = spread.graph.neighbours[v];
+      for (size_t i = 0; i < n.size(); ++i)
+        for (size_t j = i + 1; j < n.size(); ++j) {
+          Eigen::Vector3d a = (spread.graph.positions[n[i]] - p).normalized();
+          Eigen::Vector3d b = (spread.graph.positions[n[j]] - p).normalized();
+          EXPECT_GT(std::acos(std::clamp(a.dot(b), -1.0, 1.0)), 55.0 * M_PI / 180.0);
+        }
+    }
+  }
+}
+
 TEST(BoneAssignment, RejectsSkeletonsThatDoNotMatchTheCloud) {
   GeneratedShape shape = test::small_shape("tube", 5000);
   SkeletonGraph far =
