@@ -421,9 +421,10 @@ MCQ_FN mcq_vec3 mcq_hole_position(const MCQ_GLOBAL float* positions, const MCQ_G
 }
 
 /* One vertex's new position: the paper's move along the normal, or in a
- * hole (no feasible ray, params.fill_holes, not on an open rim) the
- * neighbours' offset; either shortened by the fold guard when the step asks
- * for it. */
+ * hole (no feasible ray, params.fill_holes) the neighbours' offset; either
+ * shortened by the fold guard when the step asks for it. An open end's rim
+ * counts: its rays that leave the tube past the cloud's cut find nothing,
+ * and a rim left where the initial mesh put it stays a notch 0.3 r deep. */
 MCQ_FN mcq_vec3 mcq_evolve_vertex(const MCQ_GLOBAL float* positions, const MCQ_GLOBAL float* normals,
                                   const MCQ_GLOBAL float* initial_positions, const MCQ_GLOBAL float* initial_normals,
                                   mcq_topology mesh, mcq_cells cells, mcq_regions regions, mcq_uint vertex,
@@ -435,7 +436,7 @@ MCQ_FN mcq_vec3 mcq_evolve_vertex(const MCQ_GLOBAL float* positions, const MCQ_G
     shape = mcq_vertex_shape_operator(positions, mesh.faces, mesh.vertex_face_offsets, mesh.vertex_faces, vertex, q, n);
   float delta = mcq_vertex_displacement(cells, regions, q, n, shape, vertex, params, feasible);
   mcq_vec3 target = mcq_add(q, mcq_scale(n, delta));
-  int in_hole = *feasible == 0u && params.fill_holes && !mesh.boundary[vertex];
+  int in_hole = *feasible == 0u && params.fill_holes;
   if (in_hole)
     target = mcq_hole_position(positions, initial_positions, initial_normals, mesh.faces, mesh.vertex_face_offsets,
                                mesh.vertex_faces, vertex);
