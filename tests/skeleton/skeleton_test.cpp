@@ -62,16 +62,22 @@ TEST(BoneAssignment, RadiiMatchTheGeneratedTubesDespiteNoise) {
   }
 }
 
+//! The skeleton a generated shape with bones `angle` degrees apart is built
+//! on: its acute junctions spread at the default 75 degrees.
+TubeSkeleton spread_at(const std::string& name, double angle) {
+  ShapeOptions options;
+  options.angle_degrees = angle;
+  const auto [shape, graph, bones] = test::ShapeWithBones(name, 20000, options);
+  return spread_acute_junctions(graph, bones, 75.0 * M_PI / 180.0, name);
+}
+
 //! Acute forks: at 30 degrees the junction moves up to the cloud's crotch and
 //! stays a junction; at 15 degrees the Y's tubes (radii 0.8, 6 long) still
 //! overlap at their ends, the cloud never parts, and the two branches become
 //! one tube along their middle, as wide as the two side by side.
 TEST(AcuteJunctions, SpreadWhereTheTubesPartMergeWhereTheyNeverDo) {
   for (double angle : {30.0, 15.0}) {
-    ShapeOptions options;
-    options.angle_degrees = angle;
-    const auto [shape, graph, bones] = test::ShapeWithBones("y-fork", 20000, options);
-    TubeSkeleton spread = spread_acute_junctions(graph, bones, 75.0 * M_PI / 180.0, "y");
+    TubeSkeleton spread = spread_at("y-fork", angle);
     int junctions = 0, ends = 0;
     for (size_t v = 0; v < spread.graph.node_count(); ++v) {
       junctions += spread.graph.kind(int(v)) == NodeKind::kJunction;
@@ -181,10 +187,7 @@ TEST(AcuteJunctions, AForkShortOfRoomMovesPartway) {
 //! each, stays.
 TEST(AcuteJunctions, AFanWhoseLimbsPartTogetherMovesAtOnce) {
   for (double angle : {30.0, 20.0}) {
-    ShapeOptions options;
-    options.angle_degrees = angle;
-    const auto [shape, graph, bones] = test::ShapeWithBones("fan", 20000, options);
-    TubeSkeleton spread = spread_acute_junctions(graph, bones, 75.0 * M_PI / 180.0, "fan");
+    TubeSkeleton spread = spread_at("fan", angle);
     if (angle == 20.0) {
       EXPECT_EQ(junction_count(spread.graph), 2) << "the 20-degree fan's cascade";
       continue;
