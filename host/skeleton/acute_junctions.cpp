@@ -188,9 +188,9 @@ Eigen::Vector3d bone_direction(const SkeletonGraph& graph, int node, int next) {
 //! other only well up their bones, and moving the pair alone leaves the
 //! fan's other limb forking from the old junction at a crotch far below the
 //! cloud's (the 30-degree fan's crease sank a tube radius into the trunk).
-//! Only limbs that run to an end or another junction, each chain with room
-//! to be cut, and a fan that leaves at least one other bone of the junction
-//! qualify; otherwise just the pair.
+//! A fan leaves at least one other bone of the junction (its stem's side);
+//! otherwise it is just the pair. Whether it moves as one is
+//! cascade_stalls's and fan_has_room's to say.
 std::vector<int> fan_of(const SkeletonGraph& graph, int node, const std::array<int, 2>& pair, double min_angle) {
   std::vector<int> fan = {pair[0], pair[1]};
   for (int next : graph.neighbours[node]) {
@@ -239,20 +239,22 @@ bool fan_has_room(const SkeletonGraph& graph, int node, const std::vector<int>& 
   return true;
 }
 
-//! Moves a fan of three limbs or more (fan_of) from `node` to a new junction
-//! `rise` up their mean direction, each chain cut `along` its length: the
-//! pair's move (spread_acute_junctions) for all of the fan's limbs at once.
-//! Each limb then leaves the new junction from where it parts from its
-//! neighbours. Returns the new junction's node.
-int spread_fan(EditableSkeleton& skeleton, const SkeletonGraph& graph, int node, const std::vector<int>& fan,
-               double rise, double along) {
+//! Where a fan's new junction goes: `rise` from `node` up its limbs' mean direction.
+Eigen::Vector3d fan_fork(const SkeletonGraph& graph, int node, const std::vector<int>& fan, double rise) {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (int next : fan) mean += bone_direction(graph, node, next);
+  return graph.positions[node] + mean.normalized() * rise;
+}
+
+//! Moves a fan of three limbs or more (fan_of) from `node` to a new junction
+//! at `fork` (fan_fork), each chain cut `along` its length: the pair's move
+//! (spread_acute_junctions) for all of the fan's limbs at once. Each limb
+//! then leaves the new junction from where it parts from its neighbours.
+void spread_fan(EditableSkeleton& skeleton, const SkeletonGraph& graph, int node, const std::vector<int>& fan,
+                const Eigen::Vector3d& fork, double along) {
   double widest = 0;
-  for (int next : fan) {
-    mean += bone_direction(graph, node, next);
-    widest = std::max(widest, limb_radius(skeleton, graph.chain_from(node, next)));
-  }
-  skeleton.nodes.emplace_back(graph.positions[node] + mean.normalized() * rise);
+  for (int next : fan) widest = std::max(widest, limb_radius(skeleton, graph.chain_from(node, next)));
+  skeleton.nodes.push_back(fork);
   int junction = int(skeleton.nodes.size()) - 1;
   skeleton.add_edge(node, junction, widest);
   for (int next : fan) {
@@ -261,7 +263,6 @@ int spread_fan(EditableSkeleton& skeleton, const SkeletonGraph& graph, int node,
     int cut = cut_chain(skeleton, graph, chain, along);
     skeleton.add_edge(junction, cut, r);
   }
-  return junction;
 }
 
 }  // namespace
@@ -325,14 +326,13 @@ TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssign
     double rise = std::max(crotch - r, 0.25 * crotch);     // the fork's distance up the bisector
     Eigen::Vector3d di = (g.positions[best_i] - g.positions[best_node]).normalized();
     Eigen::Vector3d dj = (g.positions[best_j] - g.positions[best_node]).normalized();
-    std::vector<int> fan = fan_of(g, best_node, {best_i, best_j}, min_angle);
-    Eigen::Vector3d fan_direction = Eigen::Vector3d::Zero();
-    for (int next : fan) fan_direction += bone_direction(g, best_node, next);
+    const std::vector<int> fan = fan_of(g, best_node, {best_i, best_j}, min_angle);
     if (fan.size() > 2 && cascade_stalls(skeleton, g, best_node, {best_i, best_j}, fan, rise) &&
         fan_has_room(g, best_node, fan, along + r) &&
-        !lands_in_another_tube(skeleton, g, best_node, fan, g.positions[best_node] + fan_direction.normalized() * rise,
-                               kForkClearance * r)) {
-      created.push_back(skeleton.nodes[size_t(spread_fan(skeleton, g, best_node, fan, rise, along))]);
+        !lands_in_another_tube(skeleton, g, best_node, fan, fan_fork(g, best_node, fan, rise), kForkClearance * r)) {
+      const Eigen::Vector3d fork = fan_fork(g, best_node, fan, rise);
+      spread_fan(skeleton, g, best_node, fan, fork, along);
+      created.push_back(fork);
       std::vector<double> radius;
       result.graph = rebuild(skeleton, radius, source);
       result.bone_radius = radius;
