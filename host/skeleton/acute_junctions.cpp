@@ -288,6 +288,12 @@ TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssign
   // Junctions this made are not moved again: their fork is as wide as the
   // crotch allows, and moving them on would only creep into the crotch.
   std::vector<Eigen::Vector3d> created;
+  // The edited skeleton becomes the one the next round looks at; its node
+  // indices changed, so the pairs kept for lack of room are looked at again.
+  auto take = [&](const EditableSkeleton& edited) {
+    result.graph = rebuild(edited, result.bone_radius, source);
+    kept.clear();
+  };
   auto is_created = [&](const Eigen::Vector3d& p) {
     for (const auto& c : created)
       if ((c - p).norm() < 1e-12) return true;
@@ -328,23 +334,19 @@ TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssign
     Eigen::Vector3d dj = (g.positions[best_j] - g.positions[best_node]).normalized();
     const std::vector<int> fan = fan_of(g, best_node, {best_i, best_j}, min_angle);
     if (fan.size() > 2 && cascade_stalls(skeleton, g, best_node, {best_i, best_j}, fan, rise) &&
-        fan_has_room(g, best_node, fan, along + r) &&
-        !lands_in_another_tube(skeleton, g, best_node, fan, fan_fork(g, best_node, fan, rise), kForkClearance * r)) {
+        fan_has_room(g, best_node, fan, along + r)) {
       const Eigen::Vector3d fork = fan_fork(g, best_node, fan, rise);
-      spread_fan(skeleton, g, best_node, fan, fork, along);
-      created.push_back(fork);
-      std::vector<double> radius;
-      result.graph = rebuild(skeleton, radius, source);
-      result.bone_radius = radius;
-      kept.clear();
-      continue;
+      if (!lands_in_another_tube(skeleton, g, best_node, fan, fork, kForkClearance * r)) {
+        spread_fan(skeleton, g, best_node, fan, fork, along);
+        created.push_back(fork);
+        take(skeleton);
+        continue;
+      }
     }
     const double room = std::min(chain_length(g, chain_i), chain_length(g, chain_j)) - r;
     if (along > room || chain_i.back() == chain_j.back()) {
       if (tubes_never_part(g, chain_i, chain_j, ri, rj)) {
-        result.graph =
-            rebuild(merge_chains(skeleton, g, chain_i, chain_j, std::max(ri, rj)), result.bone_radius, source);
-        kept.clear();  // node indices changed
+        take(merge_chains(skeleton, g, chain_i, chain_j, std::max(ri, rj)));
         continue;
       }
       // Short of room for the whole move, a fork still moves as far up as
@@ -374,10 +376,7 @@ TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssign
     skeleton.add_edge(best_node, junction, std::max(ri, rj));
     skeleton.add_edge(junction, pi, ri);
     skeleton.add_edge(junction, pj, rj);
-    std::vector<double> radius;
-    result.graph = rebuild(skeleton, radius, source);
-    result.bone_radius = radius;
-    kept.clear();  // node indices changed
+    take(skeleton);
   }
   result.node_radius = node_radii(result.graph, result.bone_radius);
   return result;

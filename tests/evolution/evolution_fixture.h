@@ -51,14 +51,17 @@ struct Fixture {
     return out;
   }
 
+  //! Vertex v's distance to the true surface relative to the local tube radius.
+  double relative_surface_distance(const std::vector<float>& positions, size_t v) const {
+    Eigen::Vector3d x(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
+    return std::abs(shape.surface.signed_distance(x)) /
+           shape.surface.capsules()[shape.surface.nearest_capsule(x)].radius;
+  }
+
   //! Distances to the true surface relative to the local tube radius.
   DistanceSummary relative_surface_distances(const std::vector<float>& positions) const {
     std::vector<double> relative;
-    for (size_t v = 0; v < positions.size() / 3; ++v) {
-      Eigen::Vector3d x(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
-      relative.push_back(std::abs(shape.surface.signed_distance(x)) /
-                         shape.surface.capsules()[shape.surface.nearest_capsule(x)].radius);
-    }
+    for (size_t v = 0; v < positions.size() / 3; ++v) relative.push_back(relative_surface_distance(positions, v));
     return summarize_distances(relative);
   }
 

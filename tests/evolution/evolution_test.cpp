@@ -180,9 +180,7 @@ TEST_P(OnEachBackend, RobustModeBringsOpenRimsToTheCloud) {
   for (size_t v = 0; v < f.arrays.vertex_count(); ++v) {
     if (!f.arrays.boundary[v]) continue;
     ++rim;
-    Eigen::Vector3d x(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
-    worst = std::max(worst, std::abs(f.shape.surface.signed_distance(x)) /
-                                f.shape.surface.capsules()[f.shape.surface.nearest_capsule(x)].radius);
+    worst = std::max(worst, f.relative_surface_distance(positions, v));
   }
   ASSERT_GT(rim, 0u);
   EXPECT_LT(worst, 0.05) << "the worst open rim vertex, relative to the radius";
