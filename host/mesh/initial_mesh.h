@@ -21,8 +21,9 @@ enum class ConstructionStage { kBlocks, kExtruded, kRefined };
 struct InitialMeshOptions {
   double start_fraction = 0.7;  //!< initial mesh radius as a fraction of the local cloud radius
   //! The junction blocks' radius as a fraction of the local cloud radius (at
-  //! least the start fraction; the start fraction at a junction with a limb
-  //! shorter than its blend from the block).
+  //! least the start fraction). The start fraction instead at a junction with
+  //! a limb that ends or narrows within its blend from the block, and on an
+  //! unrefined mesh (MeshAssembler::block_fraction, build_initial_mesh).
   double block_fraction = 0.9;
   EndMode ends = EndMode::kAuto;  //!< open/capped ends; auto decides from the cloud
   double resolution = 0;          //!< target edge length; 0 = auto (16 vertices around a tube)
