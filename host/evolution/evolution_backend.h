@@ -7,6 +7,7 @@
 #include "cells/cell_tree.h"
 #include "cells/skeleton_regions.h"
 #include "core/shared_math.h"
+#include "mesh/crossing_guard.h"
 #include "mesh/mesh_arrays.h"
 
 namespace mcquad {
@@ -41,6 +42,25 @@ class EvolutionBackend {
   virtual std::vector<float> normals() = 0;
   //! Replaces the vertex positions (same count) and recomputes the normals.
   virtual void set_positions(const std::vector<float>& positions) = 0;
+
+  // Robust mode's crossing guard tested where the positions are, so that
+  // they come back to the host only when the guard holds something back
+  // (kernels/guard.cl). The serial backend's positions are on the host
+  // already; it has no such test.
+
+  //! Whether this backend can test a step for the guard.
+  virtual bool tests_guard() const { return false; }
+  //! Takes what the test needs; with `floors_only`, only the Jacobian floors
+  //! have changed since the last call.
+  virtual void load_guard(const GuardArrays& /*arrays*/, bool /*floors_only*/) {}
+  //! Whether the last step left none of the defects the guard holds back
+  //! (CrossingGuard::apply would change nothing); if so, the Jacobian floors
+  //! rise as apply() raises them. False where the backend cannot tell.
+  virtual bool guard_finds_nothing() { return false; }
+  //! The Jacobian floors as the backend holds them (after load_guard).
+  virtual std::vector<double> guard_floors() { return {}; }
+  //! The positions the last step started from (after load_guard).
+  virtual std::vector<float> positions_before_step() { return {}; }
 };
 
 enum class BackendKind { kAuto, kSerial, kOpenCL };

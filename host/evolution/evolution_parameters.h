@@ -31,6 +31,11 @@ struct EvolutionParameters {
   //! Robust mode: moves that make faces cross are undone after each step
   //! (mesh/crossing_guard.h).
   bool crossing_guard = true;
+  //! With the guard, a backend that can test a step for it does (the
+  //! positions then stay on the device unless the guard has something to
+  //! hold back); the same positions either way. Off: the host tests every
+  //! step (for tests and measurements).
+  bool guard_test_on_backend = true;
   //! Robust mode, with the guard: weight of the tangential relaxation of the
   //! vertices it held back, after each step (0 = none).
   double held_back_relaxation = 0.6;

@@ -2,9 +2,10 @@
 
 #include <chrono>
 #include <memory>
+#include <tuple>
 
 #include "core/progress.h"
-#include "mesh/crossing_guard.h"
+#include "evolution/guarded_steps.h"
 
 namespace mcquad {
 
@@ -38,45 +39,6 @@ device::mcq_step_params make_step_params(const EvolutionParameters& parameters, 
   return params;
 }
 
-namespace {
-
-//! Moves the held-back vertices toward the mean of their neighbours within
-//! their tangent planes (the relaxation robust mode offers for every vertex,
-//! mcq_relaxed_position, here for these only), through the guard again.
-//! Where a crease or a merged stem stops them, the next step's moves into
-//! it cross less once they are spread out (docs/DESIGN.md).
-void relax_held_back(const MeshArrays& mesh, CrossingGuard& guard, const std::vector<uint32_t>& held, float weight,
-                     std::vector<float>& positions) {
-  std::vector<float> normals(positions.size(), 0.0f), relaxed = positions;
-  for (uint32_t v : held)
-    device::mcq_store3(normals.data(), v,
-                       device::mcq_vertex_normal(positions.data(), mesh.faces.data(), mesh.vertex_face_offsets.data(),
-                                                 mesh.vertex_faces.data(), v));
-  for (uint32_t v : held)
-    device::mcq_store3(relaxed.data(), v,
-                       device::mcq_relaxed_position(positions.data(), normals.data(), mesh.faces.data(),
-                                                    mesh.vertex_face_offsets.data(), mesh.vertex_faces.data(),
-                                                    mesh.boundary.data(), v, weight));
-  guard.apply(positions, relaxed);
-  positions.swap(relaxed);
-}
-
-//! Robust mode's crossing guard on the step just taken from `before`; the
-//! backend gets the shortened (and relaxed) positions, and `before` becomes
-//! the accepted ones. Returns how many vertices were held back.
-size_t guard_step(EvolutionBackend& backend, const MeshArrays& mesh, CrossingGuard& guard, float relaxation,
-                  std::vector<float>& before) {
-  std::vector<float> after = backend.positions();
-  std::vector<uint32_t> held = guard.apply(before, after);
-  if (!held.empty() && relaxation > 0.0f) relax_held_back(mesh, guard, held, relaxation, after);
-  if (!held.empty()) backend.set_positions(after);
-  backend.finish();
-  before.swap(after);
-  return held.size();
-}
-
-}  // namespace
-
 EvolutionResult evolve(EvolutionBackend& backend, const MeshArrays& mesh, const EvolutionParameters& parameters,
                        const IterationCallback& after_iteration, unsigned first_iteration) {
   using Clock = std::chrono::steady_clock;
@@ -86,10 +48,11 @@ EvolutionResult evolve(EvolutionBackend& backend, const MeshArrays& mesh, const 
   double previous = result.initial_error_level;
   Progress progress("evolving", parameters.iterations);
   bool guard = parameters.mode == EvolutionParameters::Mode::kRobust && parameters.crossing_guard;
-  // The guard compares each step with the positions before it; they stay on
-  // the host between steps (12 bytes a vertex each way per iteration).
-  std::vector<float> before = guard ? backend.positions() : std::vector<float>();
-  std::unique_ptr<CrossingGuard> crossing_guard = guard ? std::make_unique<CrossingGuard>(mesh) : nullptr;
+  // The guard compares each step with the positions before it.
+  std::unique_ptr<GuardedSteps> crossing_guard =
+      guard ? std::make_unique<GuardedSteps>(backend, mesh, float(parameters.held_back_relaxation),
+                                             parameters.guard_test_on_backend)
+            : nullptr;
   for (unsigned i = 0; i < parameters.iterations; ++i) {
     auto start = Clock::now();
     backend.step(make_step_params(parameters, first_iteration + i));
@@ -97,9 +60,7 @@ EvolutionResult evolve(EvolutionBackend& backend, const MeshArrays& mesh, const 
     IterationRecord record;
     record.iteration = first_iteration + i + 1;
     auto stepped = Clock::now();
-    if (crossing_guard)
-      record.held_back_vertices =
-          guard_step(backend, mesh, *crossing_guard, float(parameters.held_back_relaxation), before);
+    if (crossing_guard) std::tie(record.held_back_vertices, record.guard_on_host) = crossing_guard->guard();
     auto guarded = Clock::now();
     record.error_level = backend.error_level();
     auto end = Clock::now();

@@ -17,6 +17,9 @@ struct IterationRecord {
   double guard_seconds = 0;       //!< of which the crossing guard (robust mode)
   double error_seconds = 0;       //!< of which the error level
   size_t held_back_vertices = 0;  //!< vertices whose step the crossing guard shortened
+  //! Whether the crossing guard ran on the host (the positions came back);
+  //! false where the backend found nothing for it to hold back.
+  bool guard_on_host = false;
 };
 
 struct EvolutionResult {

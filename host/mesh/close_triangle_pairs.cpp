@@ -23,6 +23,33 @@ double CloseTrianglePairs::half_mean_edge(const MeshTriangles& triangles) {
   return triangles.size() > 0 ? 0.5 * total / double(3 * triangles.size()) : 0.0;
 }
 
+std::vector<uint32_t> CloseTrianglePairs::flat_pairs() const {
+  std::vector<uint32_t> pairs;
+  for (size_t t = 0; t < partners_.size(); ++t)
+    for (auto p = std::upper_bound(partners_[t].begin(), partners_[t].end(), uint32_t(t)); p != partners_[t].end(); ++p)
+      pairs.insert(pairs.end(), {uint32_t(t), *p});
+  return pairs;
+}
+
+std::vector<float> CloseTrianglePairs::reference_floats() const {
+  std::vector<float> out;
+  out.reserve(3 * reference_.size());
+  for (const Eigen::Vector3d& p : reference_) out.insert(out.end(), {float(p.x()), float(p.y()), float(p.z())});
+  return out;
+}
+
+double CloseTrianglePairs::move_limit() const {
+  double extent = 0;
+  for (const Eigen::Vector3d& p : reference_) extent = std::max(extent, p.cwiseAbs().maxCoeff());
+  // While no vertex is past the limit, none is more than gap / 2 from its
+  // reference, so the positions' extent is at most extent + gap / 2; the
+  // allowance is taken twice, so that no rounding of the comparison itself
+  // can put the device's test on the other side of update()'s.
+  return gap_ - 2 * rounding_slack(extent + 0.5 * gap_);
+}
+
+double CloseTrianglePairs::rounding_slack(double extent) const { return 8 * FLT_EPSILON * (extent + gap_); }
+
 void CloseTrianglePairs::update(const MeshTriangles& triangles) {
   const size_t vertices = triangles.positions.size();
   if (reference_.size() != vertices || partners_.size() != triangles.size()) {
@@ -35,7 +62,7 @@ void CloseTrianglePairs::update(const MeshTriangles& triangles) {
   // from their references, twice the largest of one vertex. The list's
   // boxes are floats and so is its gap test: allow for a few roundings at
   // the coordinates' magnitude.
-  const double slack = 8 * FLT_EPSILON * (extent + gap_);
+  const double slack = rounding_slack(extent);
   std::vector<double> moved(vertices);
   bool any = false;
   for (size_t v = 0; v < vertices; ++v) {

@@ -39,6 +39,17 @@ class CloseTrianglePairs {
   std::vector<std::pair<int, int>> intersecting_face_pairs(const MeshTriangles& triangles,
                                                            const std::vector<char>* only_faces = nullptr);
 
+  //! The listed pairs, each once (its lower triangle first), 2 a pair: what
+  //! a device tests (kernels/guard.cl).
+  std::vector<uint32_t> flat_pairs() const;
+  //! The reference positions, 3 floats a vertex (they hold floats' values).
+  std::vector<float> reference_floats() const;
+  //! A vertex whose largest move along an axis from its reference, doubled,
+  //! exceeds this may have left a pair off the list (update() then looks
+  //! again): the gap less update()'s rounding allowance at the largest
+  //! extent the positions can have while no vertex does.
+  double move_limit() const;
+
   //! How many times the whole list has been built, and how many times the
   //! pairs of some of its triangles have been looked for again.
   size_t builds() const { return builds_; }
@@ -55,6 +66,9 @@ class CloseTrianglePairs {
   std::vector<std::vector<uint32_t>> partners_;
   size_t builds_ = 0, refreshes_ = 0;
 
+  //! update()'s allowance for a few float roundings at the coordinates'
+  //! magnitude `extent`.
+  double rounding_slack(double extent) const;
   //! Brings the list up to `triangles`' positions: nothing, the pairs of the
   //! triangles round the vertices gone too far, or all of it.
   void update(const MeshTriangles& triangles);

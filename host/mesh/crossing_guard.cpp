@@ -15,13 +15,13 @@ Eigen::Vector3d position(const std::vector<float>& positions, uint32_t v) {
   return {positions[3 * size_t(v)], positions[3 * size_t(v) + 1], positions[3 * size_t(v) + 2]};
 }
 
-//! Unit normal of quad f: its vector area (core/quad_mesh.h), as the kernels take it.
+//! Unit normal of quad f: its vector area (core/quad_mesh.h), as the
+//! device's test of a step takes it (kernels/shared/mcq_guard.h).
 Eigen::Vector3d face_normal(const MeshArrays& mesh, const std::vector<float>& positions, size_t f) {
-  const uint32_t* q = &mesh.faces[4 * f];
-  Eigen::Vector3d n = quad_vector_area(
-      {position(positions, q[0]), position(positions, q[1]), position(positions, q[2]), position(positions, q[3])});
-  double length = n.norm();
-  return length > 0 ? Eigen::Vector3d(n / length) : n;
+  device::mcq_d3 corners[4];
+  device::mcq_guard_quad_corners(positions.data(), mesh.faces.data(), uint32_t(f), corners);
+  const device::mcq_d3 n = device::mcq_guard_quad_normal(corners);
+  return {n.x, n.y, n.z};
 }
 
 //! Keeps the face pairs only (single faces have their floors instead).
@@ -73,6 +73,30 @@ CrossingGuard::CrossingGuard(const MeshArrays& mesh)
   known_at_ = mesh.positions;
 }
 
+GuardArrays CrossingGuard::device_arrays() const {
+  GuardArrays arrays;
+  for (const auto& corners : triangles_.corners)
+    arrays.triangle_corners.insert(arrays.triangle_corners.end(),
+                                   {uint32_t(corners[0]), uint32_t(corners[1]), uint32_t(corners[2])});
+  arrays.close_pairs = close_pairs_.flat_pairs();
+  arrays.references = close_pairs_.reference_floats();
+  arrays.move_limit = close_pairs_.move_limit();
+  for (uint32_t f = 0; f + 1 < neighbour_offsets_.size(); ++f)
+    for (uint32_t j = neighbour_offsets_[f]; j < neighbour_offsets_[f + 1]; ++j)
+      if (neighbours_[j] > f) arrays.fold_pairs.insert(arrays.fold_pairs.end(), {f, neighbours_[j]});
+  arrays.initial_normals = initial_normals_;
+  arrays.jacobian_floors = jacobian_floor_;
+  return arrays;
+}
+
+void CrossingGuard::resume(const std::vector<float>& before, const std::vector<double>& floors) {
+  jacobian_floor_ = floors;
+  low_faces_.clear();
+  for (uint32_t f = 0; f < jacobian_floor_.size(); ++f)
+    if (jacobian_floor_[f] < kLeastScaledJacobian) low_faces_.push_back(f);
+  known_at_ = before;
+}
+
 std::vector<CrossingGuard::Defect> CrossingGuard::defects(const std::vector<float>& positions,
                                                           const std::vector<char>* only_faces) const {
   MeshTriangles triangles = triangulate(mesh_.faces, positions);
@@ -106,10 +130,8 @@ std::vector<CrossingGuard::Defect> CrossingGuard::find_defects(const MeshTriangl
 #pragma omp parallel for schedule(static) if (tested_count > 4096)
   for (long t = 0; t < tested_count; ++t) {
     size_t i = size_t(tested[size_t(t)]);
-    Eigen::Vector3d start(initial_normals_[3 * i], initial_normals_[3 * i + 1], initial_normals_[3 * i + 2]);
-    Eigen::Vector3d corners[4];
-    for (size_t k = 0; k < 4; ++k) corners[k] = position(positions, mesh_.faces[4 * i + k]);
-    bad[size_t(t)] = normal[i].dot(start) < 0 || scaled_jacobian(corners) < jacobian_floor_[i] - 1e-6;
+    bad[size_t(t)] = device::mcq_guard_face_is_bad(positions.data(), mesh_.faces.data(), initial_normals_.data(),
+                                                   jacobian_floor_.data(), uint32_t(i));
   }
   for (size_t t = 0; t < tested.size(); ++t) {
     const int f = tested[t];

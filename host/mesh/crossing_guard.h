@@ -30,6 +30,20 @@ namespace mcquad {
 //! way alone. So a mesh without defects keeps none, and vertices held back
 //! still move as far as they can. Crossings and folds already there before
 //! the step are left alone (and stay counted, not hidden).
+//! What a device needs to test a step as CrossingGuard::apply would
+//! (kernels/guard.cl): the mesh's triangles, the guard's close pairs and
+//! their reference positions, the pairs of faces across an edge, the faces'
+//! initial normals and their Jacobian floors.
+struct GuardArrays {
+  std::vector<uint32_t> triangle_corners;  //!< 3 a triangle (each quad split along its 0-2 diagonal)
+  std::vector<uint32_t> close_pairs;       //!< 2 a pair of triangles
+  std::vector<float> references;           //!< 3 a vertex
+  double move_limit = 0;                   //!< CloseTrianglePairs::move_limit
+  std::vector<uint32_t> fold_pairs;        //!< 2 a pair of faces, lower first
+  std::vector<float> initial_normals;      //!< 3 a face, unit
+  std::vector<double> jacobian_floors;     //!< 1 a face
+};
+
 class CrossingGuard {
  public:
   //! `mesh` (topology and starting positions) must outlive the guard.
@@ -38,6 +52,21 @@ class CrossingGuard {
   //! Shortens the moves from `before` to `after` (both as the mesh's
   //! positions) as above; returns the vertices held back, in order.
   std::vector<uint32_t> apply(const std::vector<float>& before, std::vector<float>& after);
+
+  //! Whether the positions last accepted have no crossing or fold: then a
+  //! step in which a device finds none of the defects above (GuardArrays)
+  //! is one apply() would leave as it is, but for raising the floors.
+  bool knows_no_defects() const { return known_.empty(); }
+  //! What a device needs to test the next steps (GuardArrays).
+  GuardArrays device_arrays() const;
+  //! Changes whenever the close pairs or their references change (then the
+  //! device needs device_arrays() again; otherwise the floors alone).
+  size_t close_pairs_version() const { return close_pairs_.builds() + close_pairs_.refreshes(); }
+  const std::vector<double>& jacobian_floors() const { return jacobian_floor_; }
+  //! Picks up after steps a device accepted without the host: `before` as
+  //! the positions last accepted and `floors` as raised since. Only while
+  //! knows_no_defects().
+  void resume(const std::vector<float>& before, const std::vector<double>& floors);
 
   //! A defect: two faces (a < b), or one turned face (b = -1).
   using Defect = std::pair<int, int>;

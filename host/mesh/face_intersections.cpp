@@ -1,5 +1,6 @@
 #include "mesh/face_intersections.h"
 
+#include "core/shared_math.h"
 #include "mesh/triangle_tree.h"
 
 #include <omp.h>
@@ -7,48 +8,11 @@
 #include <algorithm>
 
 namespace mcquad {
-namespace {
-
-bool segment_hits_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d* t) {
-  // Moller-Trumbore on the segment p + s (q - p), s in [0, 1].
-  const double eps = 1e-12;
-  Eigen::Vector3d d = q - p, e1 = t[1] - t[0], e2 = t[2] - t[0];
-  Eigen::Vector3d h = d.cross(e2);
-  double det = e1.dot(h);
-  if (std::abs(det) < eps * e1.norm() * e2.norm() * d.norm()) return false;
-  double inv = 1.0 / det;
-  Eigen::Vector3d s = p - t[0];
-  double u = inv * s.dot(h);
-  if (u < 0 || u > 1) return false;
-  Eigen::Vector3d qv = s.cross(e1);
-  double v = inv * d.dot(qv);
-  if (v < 0 || u + v > 1) return false;
-  double along = inv * e2.dot(qv);
-  return along >= 0 && along <= 1;
-}
-
-}  // namespace
-
-namespace {
-
-//! Whether all corners of triangle t lie strictly on one side of the plane
-//! of triangle p: then they cannot meet (the cheap rejection that most
-//! neighbouring pairs on a smooth surface take).
-bool strictly_one_side(const Eigen::Vector3d* p, const Eigen::Vector3d* t) {
-  Eigen::Vector3d normal = (p[1] - p[0]).cross(p[2] - p[0]);
-  double d0 = normal.dot(t[0] - p[0]), d1 = normal.dot(t[1] - p[0]), d2 = normal.dot(t[2] - p[0]);
-  return (d0 > 0 && d1 > 0 && d2 > 0) || (d0 < 0 && d1 < 0 && d2 < 0);
-}
-
-}  // namespace
-
 bool triangles_intersect(const Eigen::Vector3d* a, const Eigen::Vector3d* b) {
-  if (strictly_one_side(a, b) || strictly_one_side(b, a)) return false;
-  for (int k = 0; k < 3; ++k) {
-    if (segment_hits_triangle(a[k], a[(k + 1) % 3], b)) return true;
-    if (segment_hits_triangle(b[k], b[(k + 1) % 3], a)) return true;
-  }
-  return false;
+  // The guard's test, shared with the device (kernels/shared/mcq_guard.h).
+  const device::mcq_d3 pa[3] = {to_device(a[0]), to_device(a[1]), to_device(a[2])};
+  const device::mcq_d3 pb[3] = {to_device(b[0]), to_device(b[1]), to_device(b[2])};
+  return device::mcq_guard_triangles_intersect(pa, pb) != 0;
 }
 
 double point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/quad_mesh.h"
+#include "core/shared_math.h"
 
 namespace mcquad {
 
@@ -13,7 +14,7 @@ namespace mcquad {
 //! neighbour. The metrics count folds with it and the crossing guard holds
 //! moves back with it.
 inline bool normals_fold(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return a.dot(b) < -0.5 * a.norm() * b.norm();
+  return device::mcq_guard_normals_fold(to_device(a), to_device(b)) != 0;  // kernels/shared/mcq_guard.h
 }
 
 //! Whether the two faces of an interior edge fold over each other.

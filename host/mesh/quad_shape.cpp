@@ -5,6 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "core/shared_math.h"
+
 namespace mcquad {
 namespace {
 
@@ -19,15 +21,9 @@ double quantile(std::vector<double> values, double q) {
 }  // namespace
 
 double scaled_jacobian(const Eigen::Vector3d* c) {
-  Eigen::Vector3d normal = (c[2] - c[0]).cross(c[3] - c[1]);
-  if (normal.norm() > 0) normal.normalize();
-  double jacobian = 1;
-  for (size_t k = 0; k < 4; ++k) {
-    Eigen::Vector3d to_next = c[(k + 1) % 4] - c[k], to_previous = c[(k + 3) % 4] - c[k];
-    double lengths = to_next.norm() * to_previous.norm();
-    jacobian = std::min(jacobian, lengths > 0 ? to_next.cross(to_previous).dot(normal) / lengths : 0.0);
-  }
-  return jacobian;
+  // The guard's measure, shared with the device (kernels/shared/mcq_guard.h).
+  const device::mcq_d3 corners[4] = {to_device(c[0]), to_device(c[1]), to_device(c[2]), to_device(c[3])};
+  return device::mcq_guard_scaled_jacobian(corners);
 }
 
 QuadShape measure_quad_shape(const QuadMesh& mesh) {

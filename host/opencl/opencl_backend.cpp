@@ -1,6 +1,7 @@
 #include "opencl/opencl_backend.h"
 
 #include <stdexcept>
+#include <type_traits>
 
 #include "core/errors.h"
 #include "opencl/program_cache.h"
@@ -24,6 +25,14 @@ OpenCLBackend::OpenCLBackend(const DeviceInfo& device) : device_(device) {
     errors_kernel_ = cl::Kernel(program_, "vertex_errors");
     reduce_kernel_ = cl::Kernel(program_, "reduce_sum");
     relax_kernel_ = cl::Kernel(program_, "relax_tangentially");
+    if (has_double_precision(device_.device)) {
+      guard_program_ = guard_program(context_, device_.device);
+      guard_pairs_kernel_ = cl::Kernel(guard_program_, "guard_test_pairs");
+      guard_faces_kernel_ = cl::Kernel(guard_program_, "guard_test_faces");
+      guard_folds_kernel_ = cl::Kernel(guard_program_, "guard_test_folds");
+      guard_moved_kernel_ = cl::Kernel(guard_program_, "guard_test_moved");
+      guard_raise_kernel_ = cl::Kernel(guard_program_, "guard_raise_floors");
+    }
   } catch (const cl::Error& e) {
     fail("setting up", e);
   }
@@ -49,6 +58,7 @@ DeviceArray<T> OpenCLBackend::upload(const std::vector<T>& data, cl_mem_flags fl
 void OpenCLBackend::load(const CellTree& cells, const MeshArrays& mesh, const SkeletonRegions& regions) {
   try {
     vertex_count_ = uint32_t(mesh.vertex_count());
+    guard_loaded_ = false;  // a new mesh: the guard's arrays come with the next load_guard
     node_bounds_ = upload(cells.node_bounds);
     bounds_inset_ = cells.bounds_inset;
     node_children_ = upload(cells.node_children);
@@ -96,6 +106,7 @@ void OpenCLBackend::run_normals() {
 
 void OpenCLBackend::step(const device::mcq_step_params& params) {
   try {
+    if (guard_loaded_) step_start_.copy_from(queue_, positions_);
     if (params.relaxation > 0.0f) {
       set_kernel_args(relax_kernel_, positions_, normals_, faces_, vertex_face_offsets_, vertex_faces_, boundary_,
                       next_positions_, params.relaxation, vertex_count_);
@@ -162,6 +173,77 @@ void OpenCLBackend::set_positions(const std::vector<float>& positions) {
     run_normals();
   } catch (const cl::Error& e) {
     fail("writing the positions", e);
+  }
+}
+
+void OpenCLBackend::load_guard(const GuardArrays& arrays, bool floors_only) {
+  if (!tests_guard()) return;
+  try {
+    // Written, not used in place: the host's arrays change after this call.
+    auto write = [&](auto& device_array, const auto& host) {
+      using T = typename std::decay_t<decltype(host)>::value_type;
+      device_array = DeviceArray<T>(context_, host.size());
+      device_array.write(queue_, host);
+    };
+    write(guard_floors_, arrays.jacobian_floors);
+    if (floors_only && guard_loaded_) return;
+    write(guard_triangles_, arrays.triangle_corners);
+    write(guard_pairs_, arrays.close_pairs);
+    write(guard_references_, arrays.references);
+    write(guard_fold_pairs_, arrays.fold_pairs);
+    write(guard_initial_normals_, arrays.initial_normals);
+    guard_move_limit_ = arrays.move_limit;
+    if (!guard_loaded_) {
+      step_start_ = Floats(context_, positions_.size());
+      guard_found_ = Indices(context_, 1);
+      guard_loaded_ = true;
+    }
+  } catch (const cl::Error& e) {
+    fail("loading the crossing guard's arrays", e);
+  }
+}
+
+bool OpenCLBackend::guard_finds_nothing() {
+  if (!guard_loaded_) return false;
+  try {
+    const uint32_t pairs = uint32_t(guard_pairs_.size() / 2), faces = uint32_t(faces_.size() / 4);
+    const uint32_t fold_pairs = uint32_t(guard_fold_pairs_.size() / 2);
+    guard_found_.write(queue_, std::vector<uint32_t>{0u});
+    auto run = [&](cl::Kernel& kernel, uint32_t items) {
+      if (items > 0)
+        queue_.enqueueNDRangeKernel(kernel, cl::NullRange, global_range(items, kGroupSize), cl::NDRange(kGroupSize));
+    };
+    set_kernel_args(guard_moved_kernel_, positions_, guard_references_, guard_move_limit_, vertex_count_, guard_found_);
+    run(guard_moved_kernel_, vertex_count_);
+    set_kernel_args(guard_pairs_kernel_, positions_, guard_triangles_, guard_pairs_, pairs, guard_found_);
+    run(guard_pairs_kernel_, pairs);
+    set_kernel_args(guard_faces_kernel_, positions_, faces_, guard_initial_normals_, guard_floors_, faces,
+                    guard_found_);
+    run(guard_faces_kernel_, faces);
+    set_kernel_args(guard_folds_kernel_, positions_, faces_, guard_fold_pairs_, fold_pairs, guard_found_);
+    run(guard_folds_kernel_, fold_pairs);
+    if (guard_found_.read(queue_)[0] != 0u) return false;
+    set_kernel_args(guard_raise_kernel_, positions_, faces_, guard_floors_, CrossingGuard::kLeastScaledJacobian, faces);
+    run(guard_raise_kernel_, faces);
+    return true;
+  } catch (const cl::Error& e) {
+    fail("the crossing guard's test", e);
+  }
+}
+
+std::vector<double> OpenCLBackend::guard_floors() {
+  try {
+    return guard_floors_.read(queue_);
+  } catch (const cl::Error& e) {
+    fail("reading the Jacobian floors back", e);
+  }
+}
+
+std::vector<float> OpenCLBackend::positions_before_step() {
+  try {
+    return step_start_.read(queue_);
+  } catch (const cl::Error& e) {
+    fail("reading the positions back", e);
   }
 }
 

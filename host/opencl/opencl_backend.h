@@ -22,6 +22,11 @@ class OpenCLBackend : public EvolutionBackend {
   std::vector<float> positions() override;
   std::vector<float> normals() override;
   void set_positions(const std::vector<float>& positions) override;
+  bool tests_guard() const override { return bool(guard_program_()); }
+  void load_guard(const GuardArrays& arrays, bool floors_only) override;
+  bool guard_finds_nothing() override;
+  std::vector<double> guard_floors() override;
+  std::vector<float> positions_before_step() override;
 
  private:
   using Floats = DeviceArray<float>;
@@ -46,6 +51,14 @@ class OpenCLBackend : public EvolutionBackend {
   Floats initial_positions_, initial_normals_;  //!< where the evolution started, for hole filling
   Indices cell_bones_, vertex_bones_, visible_offsets_, visible_bones_;  //!< skeleton regions
   Floats vertex_scale_;
+  // The crossing guard's test (kernels/guard.cl), on devices with double precision.
+  cl::Program guard_program_;
+  cl::Kernel guard_pairs_kernel_, guard_faces_kernel_, guard_folds_kernel_, guard_moved_kernel_, guard_raise_kernel_;
+  Indices guard_triangles_, guard_pairs_, guard_fold_pairs_, guard_found_;
+  Floats guard_references_, guard_initial_normals_, step_start_;
+  DeviceArray<double> guard_floors_;
+  double guard_move_limit_ = 0;
+  bool guard_loaded_ = false;
   float bounds_inset_ = 0;  //!< CellTree::bounds_inset
   uint32_t vertex_count_ = 0;
   size_t reduce_groups_ = 0, reduce_group_size_ = 0;

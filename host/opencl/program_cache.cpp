@@ -37,6 +37,22 @@ cl::Program build_program(const cl::Context& context, const cl::Device& device, 
   return program;
 }
 
+std::string guard_program_source() {
+  // Double precision, and no contraction of a * b + c into one rounding:
+  // the host's guard rounds every operation, and the device must agree.
+  return std::string("#pragma OPENCL EXTENSION cl_khr_fp64 : enable\n#pragma OPENCL FP_CONTRACT OFF\n") +
+         embedded::mcq_platform_h + embedded::mcq_guard_h + embedded::guard_cl;
+}
+
+bool has_double_precision(const cl::Device& device) {
+  return device.getInfo<CL_DEVICE_EXTENSIONS>().find("cl_khr_fp64") != std::string::npos;
+}
+
+cl::Program guard_program(const cl::Context& context, const cl::Device& device) {
+  static const std::string kSource = guard_program_source();
+  return build_program(context, device, kSource);
+}
+
 cl::Program mcquad_program(const cl::Context& context, const cl::Device& device, const std::string& options) {
   static const std::string kSource = mcquad_program_source();
   return build_program(context, device, kSource, options);

@@ -12,6 +12,12 @@ namespace mcquad {
 //! device name when the build fails.
 cl::Program mcquad_program(const cl::Context& context, const cl::Device& device, const std::string& options = "");
 
+//! The crossing guard's test of a step (kernels/guard.cl, double precision),
+//! built and cached like mcquad_program; only for a device with
+//! cl_khr_fp64 (has_double_precision).
+cl::Program guard_program(const cl::Context& context, const cl::Device& device);
+bool has_double_precision(const cl::Device& device);
+
 //! The concatenated source the program is built from (for tests and tools).
 std::string mcquad_program_source();
 

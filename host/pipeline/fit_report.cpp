@@ -52,7 +52,8 @@ nlohmann::json to_json(const FitReport::Evolution& e) {
                           {"step_seconds", r.step_seconds},
                           {"error_seconds", r.error_seconds},
                           {"guard_seconds", r.guard_seconds},
-                          {"held_back_vertices", r.held_back_vertices}});
+                          {"held_back_vertices", r.held_back_vertices},
+                          {"guard_on_host", r.guard_on_host}});
   nlohmann::json j = {{"initial_error_level", e.initial_error_level},
                       {"iterations", iterations},
                       {"stop_reason", e.stop_reason},

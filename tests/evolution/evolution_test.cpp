@@ -1,8 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <random>
+
 #include "cells/cell_tree.h"
 #include "core/errors.h"
 #include "evolution/evolve.h"
+#include "evolution/guarded_steps.h"
 #include "evolution/serial_backend.h"
 #include "evolution/evolution_fixture.h"
 #include "generate/true_surface_distance.h"
@@ -10,6 +14,7 @@
 #include "mesh/initial_mesh.h"
 #include "mesh/mesh_arrays.h"
 #include "pipeline/fit_options.h"
+#include "mesh/crossing_guard.h"
 #include "mesh/face_intersections.h"
 #include "metrics/mesh_metrics.h"
 #include "metrics/surface_distance.h"
@@ -351,6 +356,139 @@ TEST(OpenCLKernels, PhiloxRaysAndTraversalMatchTheHost) {
     hit += host >= 0;
   }
   EXPECT_GT(hit, 100u) << "of " << device_hits.size() << " rays";  // bone 0 is one of many
+}
+
+//! Whether the device finds nothing for the guard at `positions`, the
+//! guard's lists made there (so the device judges by the faces alone).
+bool device_finds_nothing(OpenCLBackend& opencl, CrossingGuard& guard, const std::vector<float>& positions) {
+  guard.defects(positions);  // brings the close pairs to `positions`
+  opencl.load_guard(guard.device_arrays(), false);
+  opencl.set_positions(positions);
+  return opencl.guard_finds_nothing();
+}
+
+//! Issue 18: the crossing guard's test of a step runs on the device
+//! (kernels/guard.cl) with the host guard's own predicates; it must agree
+//! with the host on every kind of defect.
+TEST(OpenCLGuard, TestsAStepAsTheHostGuardWould) {
+  REQUIRE_OPENCL(opencl);
+  if (!opencl->tests_guard()) GTEST_SKIP() << "the device has no double precision";
+  Fixture f("y-fork", 20000);
+  opencl->load(f.cells, f.arrays, f.regions);
+  CrossingGuard guard(f.arrays);
+  const std::vector<float>& start = f.arrays.positions;
+  ASSERT_TRUE(guard.defects(start).empty());
+  EXPECT_TRUE(device_finds_nothing(*opencl, guard, start));
+  // A vertex pushed along a random direction by up to 0.6 radii: crossings,
+  // folds, turned and badly shaped faces, or nothing.
+  std::mt19937 random(7);
+  std::uniform_int_distribution<uint32_t> vertex(0, uint32_t(f.arrays.vertex_count() - 1));
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> length(0.0, 0.6 * f.radius);
+  size_t with_defects = 0, trials = 60;
+  for (size_t trial = 0; trial < trials; ++trial) {
+    std::vector<float> moved = start;
+    Eigen::Vector3d d(normal(random), normal(random), normal(random));
+    d *= length(random) / d.norm();
+    uint32_t v = vertex(random);
+    for (int axis = 0; axis < 3; ++axis) moved[3 * v + axis] += float(d[axis]);
+    const bool host_finds_nothing = guard.defects(moved).empty();
+    with_defects += !host_finds_nothing;
+    EXPECT_EQ(device_finds_nothing(*opencl, guard, moved), host_finds_nothing) << "trial " << trial;
+  }
+  // Both answers must have come up often enough to mean something.
+  EXPECT_GT(with_defects, trials / 5);
+  EXPECT_LT(with_defects, trials - trials / 5);
+}
+
+//! A vertex gone further from the close pairs' references than the list
+//! allows sends the step to the host, whatever its faces.
+TEST(OpenCLGuard, AVertexPastTheCloseListsReachGoesToTheHost) {
+  REQUIRE_OPENCL(opencl);
+  if (!opencl->tests_guard()) GTEST_SKIP() << "the device has no double precision";
+  Fixture f("tube", 8000);
+  opencl->load(f.cells, f.arrays, f.regions);
+  CrossingGuard guard(f.arrays);
+  GuardArrays arrays = guard.device_arrays();
+  opencl->load_guard(arrays, false);
+  std::vector<float> moved = f.arrays.positions;
+  for (float& x : moved) x += float(0.4 * arrays.move_limit);  // the whole tube shifted: no defect
+  ASSERT_TRUE(guard.defects(moved).empty());
+  opencl->set_positions(moved);
+  EXPECT_TRUE(opencl->guard_finds_nothing());
+  for (float& x : moved) x += float(0.2 * arrays.move_limit);  // now 0.6 of the limit, doubled 1.2
+  opencl->set_positions(moved);
+  EXPECT_FALSE(opencl->guard_finds_nothing());
+}
+
+//! After steps the device accepted alone, a step with a defect goes to the
+//! host guard, which picks up from the positions that step started from and
+//! the floors the device raised since: every step ends as with the host
+//! guard alone.
+TEST(OpenCLGuard, AHostStepAfterDeviceStepsPicksUpWhereTheDeviceLeftOff) {
+  REQUIRE_OPENCL(opencl);
+  if (!opencl->tests_guard()) GTEST_SKIP() << "the device has no double precision";
+  Fixture f("torus", 20000);
+  EvolutionParameters p = f.parameters;
+  p.mode = EvolutionParameters::Mode::kRobust;
+  constexpr unsigned kSteps = 8, kPushed = 5;
+  auto run = [&](bool on_device, std::vector<std::pair<size_t, bool>>& log) {
+    opencl->load(f.cells, f.arrays, f.regions);
+    GuardedSteps guarded(*opencl, f.arrays, float(p.held_back_relaxation), on_device);
+    std::vector<std::vector<float>> positions;
+    for (unsigned i = 0; i < kSteps; ++i) {
+      opencl->step(make_step_params(p, i));
+      if (i == kPushed) {  // vertex 0 pushed through the tube: faces for the guard to hold back
+        std::vector<float> x = opencl->positions(), n = opencl->normals();
+        for (int axis = 0; axis < 3; ++axis) x[size_t(axis)] -= float(1.6 * f.radius) * n[size_t(axis)];
+        opencl->set_positions(x);
+      }
+      log.push_back(guarded.guard());
+      positions.push_back(opencl->positions());
+    }
+    return positions;
+  };
+  std::vector<std::pair<size_t, bool>> host_log, device_log;
+  auto host = run(false, host_log), device = run(true, device_log);
+  for (unsigned i = 0; i < kSteps; ++i) {
+    EXPECT_EQ(host[i], device[i]) << "step " << i;
+    EXPECT_EQ(host_log[i].first, device_log[i].first) << "step " << i;
+    EXPECT_TRUE(host_log[i].second);
+  }
+  EXPECT_FALSE(device_log[kPushed - 1].second) << "the step before the push stayed on the device";
+  EXPECT_TRUE(device_log[kPushed].second) << "the push went to the host";
+  EXPECT_GT(device_log[kPushed].first, 0u) << "and the host held the pushed vertex back";
+}
+
+//! The evolution with the guard's test on the device ends where the host
+//! guard alone takes it, bit for bit: on the T most steps stay on the
+//! device; on the 20-degree fan the guard holds vertices back at every step,
+//! and every step goes to the host.
+TEST(OpenCLGuard, StepsTestedOnTheDeviceEndWhereTheHostGuardEnds) {
+  REQUIRE_OPENCL(opencl);
+  if (!opencl->tests_guard()) GTEST_SKIP() << "the device has no double precision";
+  ShapeOptions fan;
+  fan.angle_degrees = 20;
+  for (const auto& [name, options] : {std::pair<std::string, ShapeOptions>{"t-shape", {}}, {"fan", fan}}) {
+    Fixture f(name, 30000, options);
+    EvolutionParameters p = f.parameters;
+    p.mode = EvolutionParameters::Mode::kRobust;
+    auto run = [&](bool on_device) {
+      p.guard_test_on_backend = on_device;
+      opencl->load(f.cells, f.arrays, f.regions);
+      return evolve(*opencl, f.arrays, p);
+    };
+    EvolutionResult host = run(false), device = run(true);
+    EXPECT_EQ(host.positions, device.positions) << name;
+    size_t on_host = 0, held = 0;
+    for (const auto& r : device.iterations) on_host += r.guard_on_host, held += r.held_back_vertices > 0;
+    for (const auto& r : host.iterations) EXPECT_TRUE(r.guard_on_host);
+    if (name == "t-shape") {
+      EXPECT_LT(on_host, device.iterations.size() / 2) << name;
+    }
+    std::printf("%s: guard on the host in %zu of %zu steps, %zu held vertices back\n", name.c_str(), on_host,
+                device.iterations.size(), held);
+  }
 }
 #endif
 
