@@ -11,7 +11,8 @@
 namespace mcquad {
 
 //! Robust mode's guard against self-intersection and inverted faces, run on
-//! the host after every step (docs/DESIGN.md). The per-vertex fold guard
+//! the host after a step (docs/DESIGN.md; evolution/guarded_steps.h skips
+//! it where a device's test of the step finds nothing). The per-vertex fold guard
 //! sees only a vertex's own faces for one step; faces that are not
 //! neighbours can still pass through each other (two sides of a crease
 //! moving into it, a vertex pulled across a thin neck), and small turns add
