@@ -21,7 +21,10 @@ struct MeshMeasurement {
 //! cloud's normals when it has them, else by the skeleton. With a skeleton,
 //! the default construction on it gives the radius that scales the
 //! distance checks and the open ends the mesh must have; without one those
-//! checks are left out (nothing says what is near).
+//! checks are left out (nothing says what is near). Pass the cloud in
+//! spatial order (sort_spatially), as fit has it: the figures are then fit's
+//! to the last digit, and the cloud -> mesh search, which starts from the
+//! previous point's triangle, takes a fraction of the time.
 MeshMeasurement measure_mesh(const QuadMesh& mesh, const PointCloud& cloud, const SkeletonData* skeleton,
                              const std::string& skeleton_name, size_t leaf_size);
 

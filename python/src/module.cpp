@@ -120,6 +120,7 @@ py::object metrics_json(DoubleArray vertices, IndexArray faces, FloatArray point
                         const py::object& nodes, const py::object& edges, size_t leaf_size) {
   QuadMesh mesh = mesh_from_arrays(vertices, faces, "mesh");
   PointCloud cloud = cloud_from_array(points, "points", normals);
+  sort_spatially(cloud);  // as fit sorts it: the same figures as its report, and faster (measure.h)
   std::unique_ptr<SkeletonData> skeleton;
   if (!nodes.is_none())
     skeleton = std::make_unique<SkeletonData>(
