@@ -63,7 +63,9 @@ void sort_spatially(PointCloud& cloud) {
   // input order within a bucket.
   const int threads = omp_get_max_threads();
   std::vector<std::vector<size_t>> counts(size_t(threads), std::vector<size_t>(buckets, 0));
-  auto run_of = [&](int t) { return std::make_pair(n * size_t(t) / size_t(threads), n * size_t(t + 1) / size_t(threads)); };
+  auto run_of = [&](int t) {
+    return std::make_pair(n * size_t(t) / size_t(threads), n * size_t(t + 1) / size_t(threads));
+  };
 #pragma omp parallel for schedule(static, 1)
   for (int t = 0; t < threads; ++t) {
     auto [first, last] = run_of(t);
