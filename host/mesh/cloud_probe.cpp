@@ -42,7 +42,11 @@ void CloudProbe::keep_inside(QuadMesh& mesh) const {
   MeshArrays arrays = flatten_mesh(mesh);
   std::vector<float> moved = arrays.positions;
   double margin = 2.0 * spacing_;
-  for (auto v : mesh.vertices()) {
+  // Each vertex reads the mesh and the cloud and writes its own place: on all cores.
+  const long vertices = long(mesh.n_vertices());
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < vertices; ++i) {
+    const auto v = mesh.vertex_handle(int(i));
     device::mcq_vec3 nv =
         device::mcq_vertex_normal(arrays.positions.data(), arrays.faces.data(), arrays.vertex_face_offsets.data(),
                                   arrays.vertex_faces.data(), uint32_t(v.idx()));

@@ -100,6 +100,9 @@ void inflate_junctions(QuadMesh& mesh, const TubeSkeleton& skeleton, const Cloud
       for (int k = 0; k < 3; ++k) moved[3 * v + size_t(k)] = float(q[k]);
     }
   }
+  // Nothing moved (no junction: a loop, a tube): nothing for the guard to
+  // check, and building it took 14 ms on the knot's mesh.
+  if (moved == arrays.positions) return;
   CrossingGuard(arrays).apply(arrays.positions, moved);
   for (auto v : mesh.vertices()) {
     const float* m = &moved[3 * size_t(v.idx())];
