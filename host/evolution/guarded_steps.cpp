@@ -56,8 +56,10 @@ std::pair<size_t, bool> GuardedSteps::guard() {
   // Tested on the backend only after a step the host guard let through
   // whole: where it holds vertices back step after step (the junctions of
   // most generated shapes), the test would find something every time.
-  if (test_on_backend_ && held_last_step_ == 0 && guard_.knows_no_defects() && backend_.guard_finds_nothing()) {
+  const bool tested = test_on_backend_ && held_last_step_ == 0 && guard_.knows_no_defects();
+  if (tested && backend_.guard_finds_nothing()) {
     before_current_ = false;
+    stale_steps_ = 0;
     return {0, false};
   }
   if (!before_current_) {
@@ -65,7 +67,14 @@ std::pair<size_t, bool> GuardedSteps::guard() {
     guard_.resume(before_, backend_.guard_floors());
     before_current_ = true;
   }
+  const size_t version = guard_.close_pairs_version();
   held_last_step_ = guard_step(backend_, mesh_, guard_, relaxation_, before_);
+  // A step the backend sent here in which the host found nothing to hold
+  // back but had to make its close pairs again: the steps outrun the list.
+  // Twice in a row, and the list is made with twice the gap.
+  const bool outrun = tested && held_last_step_ == 0 && guard_.close_pairs_version() != version;
+  stale_steps_ = outrun ? stale_steps_ + 1 : 0;
+  if (stale_steps_ >= kOutrunStepsBeforeWidening && guard_.widen_close_pairs()) stale_steps_ = 0;
   if (test_on_backend_ && held_last_step_ == 0) load(guard_.close_pairs_version() == loaded_version_);
   return {held_last_step_, true};
 }

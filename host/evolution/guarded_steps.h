@@ -18,7 +18,9 @@ namespace mcquad {
 //! nothing, and the positions stay on the device (issue 18). After a step
 //! in which the host guard held vertices back, the next goes to the host
 //! untested (where it holds some back at every step, a test would only
-//! cost). Otherwise the
+//! cost). Where the steps keep outrunning the guard's list of close pairs
+//! (the positions must come back to make it again), the list is made with a
+//! wider gap (CrossingGuard::widen_close_pairs). Otherwise the
 //! host guard runs as it does without the test, from the positions the step
 //! started from. The positions come out the same either way, bit for bit.
 class GuardedSteps {
@@ -45,6 +47,8 @@ class GuardedSteps {
   bool before_current_ = true;  //!< false after steps the backend accepted alone
   size_t loaded_version_ = 0;   //!< CrossingGuard::close_pairs_version the backend holds
   size_t held_last_step_ = 0;   //!< vertices the host guard held back at its last step
+  int stale_steps_ = 0;         //!< steps in a row the close pairs went stale with nothing held back
+  static constexpr int kOutrunStepsBeforeWidening = 2;
 };
 
 }  // namespace mcquad

@@ -27,6 +27,9 @@ class CloseTrianglePairs {
  public:
   explicit CloseTrianglePairs(double gap) : gap_(gap) {}
 
+  //! The gap the list was made for.
+  double gap() const { return gap_; }
+
   //! The usual gap: half the triangles' mean edge length. The list then
   //! holds about a triangle's ring of neighbours, and its pairs last while
   //! the vertices move less than a quarter of an edge (docs/PERFORMANCE.md).

@@ -89,6 +89,13 @@ GuardArrays CrossingGuard::device_arrays() const {
   return arrays;
 }
 
+bool CrossingGuard::widen_close_pairs() {
+  if (widenings_ >= size_t(kMostWidenings)) return false;
+  close_pairs_ = CloseTrianglePairs(2 * close_pairs_.gap());
+  ++widenings_;
+  return true;
+}
+
 void CrossingGuard::resume(const std::vector<float>& before, const std::vector<double>& floors) {
   jacobian_floor_ = floors;
   low_faces_.clear();

@@ -62,7 +62,14 @@ class CrossingGuard {
   GuardArrays device_arrays() const;
   //! Changes whenever the close pairs or their references change (then the
   //! device needs device_arrays() again; otherwise the floors alone).
-  size_t close_pairs_version() const { return close_pairs_.builds() + close_pairs_.refreshes(); }
+  size_t close_pairs_version() const {
+    return close_pairs_.builds() + close_pairs_.refreshes() + (widenings_ << 32);
+  }
+  //! Doubles the close pairs' gap (the list is made again at the next
+  //! test): a list that lasts more steps, of more pairs. Only as far as
+  //! 2^kMostWidenings times the first gap; returns whether it widened.
+  bool widen_close_pairs();
+  static constexpr int kMostWidenings = 2;
   const std::vector<double>& jacobian_floors() const { return jacobian_floor_; }
   //! Picks up after steps a device accepted without the host: `before` as
   //! the positions last accepted and `floors` as raised since. Only while
@@ -95,6 +102,7 @@ class CrossingGuard {
   //! The crossing test's broad phase, kept from call to call while the
   //! vertices stay near (a cache: defects() gives the same answers without).
   mutable CloseTrianglePairs close_pairs_;
+  size_t widenings_ = 0;  //!< times widen_close_pairs() doubled the gap
 
   //! Floors rise with the quads, up to kLeastScaledJacobian.
   void raise_jacobian_floors(const std::vector<float>& positions);

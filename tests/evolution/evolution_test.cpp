@@ -462,14 +462,17 @@ TEST(OpenCLGuard, AHostStepAfterDeviceStepsPicksUpWhereTheDeviceLeftOff) {
 
 //! The evolution with the guard's test on the device ends where the host
 //! guard alone takes it, bit for bit: on the T most steps stay on the
-//! device; on the 20-degree fan the guard holds vertices back at every step,
-//! and every step goes to the host.
+//! device; on the star of 4 the first steps outrun the guard's close pairs
+//! until their gap widens, then the steps stay on the device; on the
+//! 20-degree fan the guard holds vertices back at every step, and every
+//! step goes to the host.
 TEST(OpenCLGuard, StepsTestedOnTheDeviceEndWhereTheHostGuardEnds) {
   REQUIRE_OPENCL(opencl);
   if (!opencl->tests_guard()) GTEST_SKIP() << "the device has no double precision";
   ShapeOptions fan;
   fan.angle_degrees = 20;
-  for (const auto& [name, options] : {std::pair<std::string, ShapeOptions>{"t-shape", {}}, {"fan", fan}}) {
+  for (const auto& [name, options] :
+       {std::pair<std::string, ShapeOptions>{"t-shape", {}}, {"star", {}}, {"fan", fan}}) {
     Fixture f(name, 30000, options);
     EvolutionParameters p = f.parameters;
     p.mode = EvolutionParameters::Mode::kRobust;
@@ -483,7 +486,7 @@ TEST(OpenCLGuard, StepsTestedOnTheDeviceEndWhereTheHostGuardEnds) {
     size_t on_host = 0, held = 0;
     for (const auto& r : device.iterations) on_host += r.guard_on_host, held += r.held_back_vertices > 0;
     for (const auto& r : host.iterations) EXPECT_TRUE(r.guard_on_host);
-    if (name == "t-shape") {
+    if (name != "fan") {
       EXPECT_LT(on_host, device.iterations.size() / 2) << name;
     }
     std::printf("%s: guard on the host in %zu of %zu steps, %zu held vertices back\n", name.c_str(), on_host,
