@@ -1,7 +1,5 @@
 #include "core/point_cloud.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -58,20 +56,19 @@ void sort_spatially(PointCloud& cloud) {
   auto low_code_of = [&](const Eigen::Vector3f& p) { return morton_of(p) & ((uint64_t(1) << kLowBits) - 1); };
   const size_t n = cloud.size(), buckets = size_t(1) << kBucketBits;
   auto bucket_of = [&](const Eigen::Vector3f& p) { return size_t(morton_of(p) >> kLowBits); };
-  // Each thread counts, then places, its own run of the points: thread t's
-  // points of bucket b go after the earlier threads' ones, which keeps the
-  // input order within a bucket.
-  const int threads = omp_get_max_threads();
-  std::vector<std::vector<size_t>> counts(size_t(threads), std::vector<size_t>(buckets, 0));
-  auto run_of = [&](int t) {
-    return std::make_pair(n * size_t(t) / size_t(threads), n * size_t(t + 1) / size_t(threads));
-  };
-#pragma omp parallel for schedule(static, 1)
-  for (int t = 0; t < threads; ++t) {
+  // The points fall into kRuns runs in input order, counted and then
+  // placed each on its own (on as many cores as there are): run t's points
+  // of bucket b go after the earlier runs' ones, which keeps the input order
+  // within a bucket whatever the number of threads.
+  constexpr int kRuns = 16;
+  std::vector<std::vector<size_t>> counts(size_t(kRuns), std::vector<size_t>(buckets, 0));
+  auto run_of = [&](int t) { return std::make_pair(n * size_t(t) / size_t(kRuns), n * size_t(t + 1) / size_t(kRuns)); };
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int t = 0; t < kRuns; ++t) {
     auto [first, last] = run_of(t);
     for (size_t i = first; i < last; ++i) ++counts[size_t(t)][bucket_of(cloud.points[i])];
   }
-  // Each count becomes where its thread's points of that bucket start.
+  // Each count becomes where its run's points of that bucket start.
   std::vector<size_t> offsets(buckets + 1, 0);
   for (size_t b = 0; b < buckets; ++b) {
     size_t place = offsets[b];
@@ -86,9 +83,9 @@ void sort_spatially(PointCloud& cloud) {
   // The normals first: their buckets come from the points in input order.
   auto scatter = [&](std::vector<Eigen::Vector3f>& values) {
     std::vector<Eigen::Vector3f> sorted(n);
-#pragma omp parallel for schedule(static, 1)
-    for (int t = 0; t < threads; ++t) {
-      std::vector<size_t> next = counts[size_t(t)];
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int t = 0; t < kRuns; ++t) {
+      std::vector<size_t> next = counts[size_t(t)];  // a copy: the normals and the points both start here
       auto [first, last] = run_of(t);
       for (size_t i = first; i < last; ++i) sorted[next[bucket_of(cloud.points[i])]++] = values[i];
     }
