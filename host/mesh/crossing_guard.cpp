@@ -93,6 +93,9 @@ bool CrossingGuard::widen_close_pairs() {
   if (widenings_ >= size_t(kMostWidenings)) return false;
   close_pairs_ = CloseTrianglePairs(2 * close_pairs_.gap());
   ++widenings_;
+  // Made now, at the positions last accepted (triangles_ holds them after
+  // apply()), so that device_arrays() never hands out an empty list.
+  close_pairs_.intersecting_face_pairs(triangles_);
   return true;
 }
 

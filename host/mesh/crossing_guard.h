@@ -63,8 +63,8 @@ class CrossingGuard {
   //! Changes whenever the close pairs or their references change (then the
   //! device needs device_arrays() again; otherwise the floors alone).
   size_t close_pairs_version() const { return close_pairs_.builds() + close_pairs_.refreshes() + (widenings_ << 32); }
-  //! Doubles the close pairs' gap (the list is made again at the next
-  //! test): a list that lasts more steps, of more pairs. Only as far as
+  //! Doubles the close pairs' gap and makes the list again at the positions
+  //! apply() last accepted: a list that lasts more steps, of more pairs. Only as far as
   //! 2^kMostWidenings times the first gap; returns whether it widened.
   bool widen_close_pairs();
   static constexpr int kMostWidenings = 2;

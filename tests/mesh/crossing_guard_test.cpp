@@ -61,6 +61,35 @@ TEST(CrossingGuard, DefectsAlreadyThereAreLeftAlone) {
   EXPECT_FLOAT_EQ(z_of(after, 2), 1.9f);
 }
 
+//! What a device's test of a step reads (GuardArrays) holds every vertex's
+//! reference and the close pairs, also right after the gap has widened
+//! (the list is made again at once: an empty one would let a device pass
+//! crossings it never tested).
+TEST(CrossingGuard, DeviceArraysStayWholeWhenTheGapWidens) {
+  MeshArrays mesh = two_squares();
+  CrossingGuard guard(mesh);
+  auto check = [&](const char* when) {
+    GuardArrays arrays = guard.device_arrays();
+    EXPECT_EQ(arrays.references.size(), mesh.positions.size()) << when;
+    EXPECT_EQ(arrays.references, mesh.positions) << when;
+    EXPECT_EQ(arrays.triangle_corners.size(), 3 * 2 * mesh.face_count()) << when;
+    EXPECT_EQ(arrays.jacobian_floors.size(), mesh.face_count()) << when;
+    EXPECT_GT(arrays.move_limit, 0.0) << when;
+    return arrays;
+  };
+  GuardArrays first = check("at the start");
+  const size_t version = guard.close_pairs_version();
+  for (int k = 0; k < CrossingGuard::kMostWidenings; ++k) ASSERT_TRUE(guard.widen_close_pairs());
+  EXPECT_FALSE(guard.widen_close_pairs()) << "at most kMostWidenings times";
+  EXPECT_NE(guard.close_pairs_version(), version);
+  GuardArrays widened = check("widened");
+  // The squares' triangles lie 1 apart in z: within 4 times the first gap
+  // (half the mean edge, about 0.57), not within the first gap itself.
+  EXPECT_TRUE(first.close_pairs.empty());
+  EXPECT_FALSE(widened.close_pairs.empty());
+  EXPECT_GT(widened.move_limit, first.move_limit);
+}
+
 TEST(CrossingGuard, NothingToDoWithoutDefects) {
   MeshArrays mesh = two_squares();
   CrossingGuard guard(mesh);
