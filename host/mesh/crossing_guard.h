@@ -10,10 +10,24 @@
 
 namespace mcquad {
 
+//! What a device needs to test a step as CrossingGuard::apply would
+//! (kernels/guard.cl): the mesh's triangles, the guard's close pairs and
+//! their reference positions, the pairs of faces across an edge, the faces'
+//! initial normals and their Jacobian floors.
+struct GuardArrays {
+  std::vector<uint32_t> triangle_corners;  //!< 3 a triangle (each quad split along its 0-2 diagonal)
+  std::vector<uint32_t> close_pairs;       //!< 2 a pair of triangles
+  std::vector<float> references;           //!< 3 a vertex
+  double move_limit = 0;                   //!< CloseTrianglePairs::move_limit
+  std::vector<uint32_t> fold_pairs;        //!< 2 a pair of faces, lower first
+  std::vector<float> initial_normals;      //!< 3 a face, unit
+  std::vector<double> jacobian_floors;     //!< 1 a face
+};
+
 //! Robust mode's guard against self-intersection and inverted faces, run on
-//! the host after a step (docs/DESIGN.md; evolution/guarded_steps.h skips
-//! it where a device's test of the step finds nothing). The per-vertex fold guard
-//! sees only a vertex's own faces for one step; faces that are not
+//! the host after a step (docs/DESIGN.md; evolution/guarded_steps.h skips it
+//! where a device's test of the step finds nothing). The per-vertex fold
+//! guard sees only a vertex's own faces for one step; faces that are not
 //! neighbours can still pass through each other (two sides of a crease
 //! moving into it, a vertex pulled across a thin neck), and small turns add
 //! up over steps. After a step the guard looks for new defects, by the same
@@ -31,20 +45,6 @@ namespace mcquad {
 //! way alone. So a mesh without defects keeps none, and vertices held back
 //! still move as far as they can. Crossings and folds already there before
 //! the step are left alone (and stay counted, not hidden).
-//! What a device needs to test a step as CrossingGuard::apply would
-//! (kernels/guard.cl): the mesh's triangles, the guard's close pairs and
-//! their reference positions, the pairs of faces across an edge, the faces'
-//! initial normals and their Jacobian floors.
-struct GuardArrays {
-  std::vector<uint32_t> triangle_corners;  //!< 3 a triangle (each quad split along its 0-2 diagonal)
-  std::vector<uint32_t> close_pairs;       //!< 2 a pair of triangles
-  std::vector<float> references;           //!< 3 a vertex
-  double move_limit = 0;                   //!< CloseTrianglePairs::move_limit
-  std::vector<uint32_t> fold_pairs;        //!< 2 a pair of faces, lower first
-  std::vector<float> initial_normals;      //!< 3 a face, unit
-  std::vector<double> jacobian_floors;     //!< 1 a face
-};
-
 class CrossingGuard {
  public:
   //! `mesh` (topology and starting positions) must outlive the guard.

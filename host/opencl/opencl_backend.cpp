@@ -180,9 +180,11 @@ void OpenCLBackend::load_guard(const GuardArrays& arrays, bool floors_only) {
   if (!tests_guard()) return;
   try {
     // Written, not used in place: the host's arrays change after this call.
+    // A buffer of the right size is written over (the floors, after every
+    // host step that held nothing back).
     auto write = [&](auto& device_array, const auto& host) {
       using T = typename std::decay_t<decltype(host)>::value_type;
-      device_array = DeviceArray<T>(context_, host.size());
+      if (device_array.size() != host.size()) device_array = DeviceArray<T>(context_, host.size());
       device_array.write(queue_, host);
     };
     write(guard_floors_, arrays.jacobian_floors);
