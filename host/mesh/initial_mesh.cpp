@@ -1,7 +1,6 @@
 #include "mesh/initial_mesh.h"
 
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <map>
 #include <set>

@@ -1,4 +1,4 @@
-// The whole fit from memory (run_fit), on generated shapes.
+// The whole fit (run_fit), from memory and from files, on generated shapes.
 #include <gtest/gtest.h>
 
 #include "generate/shapes.h"
