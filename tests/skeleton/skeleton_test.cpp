@@ -270,5 +270,21 @@ TEST(BoneAssignment, ABoneInsideAThickBodyGetsItsRadiusFromTheCloudAroundIt) {
   }
 }
 
+//! A thin branch leaving a thick trunk as one straight bone from the
+//! trunk's junction to its end (what `mcquad skeleton` may give): the
+//! junction lies the trunk's radius from the cloud, three times the
+//! branch's radius and more, and is inside the cloud all the same. It was
+//! refused as "far outside the cloud", judged by its thinnest bone.
+TEST(BoneAssignment, AJunctionOnAThickTrunkWithAThinBranchLiesInsideTheCloud) {
+  GeneratedShape shape = test::small_shape("thin-branch", 20000);
+  // Trunk along y, radius 1; the branch (radius 0.2) 60 degrees off it.
+  const Eigen::Vector3d branch_end = 5.0 * Eigen::Vector3d(std::sqrt(3.0) / 2, 0.5, 0);
+  SkeletonGraph graph = build_skeleton_graph(
+      skeleton_of({{0, 0, 0}, {0, 5, 0}, {0, -5, 0}, branch_end}, {{0, 1}, {0, 2}, {0, 3}}), "thin.obj");
+  BoneAssignment assigned = assign_points_to_bones(graph, shape.cloud, "thin.obj");
+  EXPECT_LT(assigned.bone_radius[2], 0.4);
+  EXPECT_GT(assigned.bone_radius[0], 0.8);
+}
+
 }  // namespace
 }  // namespace mcquad
