@@ -6,6 +6,7 @@
 
 #include "core/errors.h"
 #include "io/file_utils.h"
+#include "io/openmesh_messages.h"
 
 namespace mcquad {
 namespace {
@@ -69,7 +70,25 @@ QuadMesh read_mesh(const std::string& path) {
   silence_openmesh();
   QuadMesh mesh;
   OpenMesh::IO::Options options;
-  if (!OpenMesh::IO::read_mesh(mesh, path, options)) throw InputError(path + ": cannot read mesh");
+  // A face OpenMesh cannot hold is dropped or given copies of its corners,
+  // with a message and nothing else: measured as it is read, a mesh whose
+  // edge three faces share would pass for a manifold one. Refused instead.
+  size_t complex_edges = 0, complex_vertices = 0, invalid_faces = 0;
+  {
+    OpenMeshMessages messages;
+    if (!OpenMesh::IO::read_mesh(mesh, path, options)) throw InputError(path + ": cannot read mesh");
+    complex_edges = messages.count("add_face: complex edge");
+    complex_vertices = messages.count("add_face: complex vertex");
+    invalid_faces = messages.count("invalid vertex index") + messages.count("invalid faces");
+  }
+  if (const size_t n = complex_edges + complex_vertices; n > 0)
+    throw InputError(path + ": not a manifold mesh: " + std::to_string(n) + (n == 1 ? " face meets" : " faces meet") +
+                     " an edge two faces already share, or a corner between two separate fans of faces, which "
+                     "mcquad's mesh structure cannot hold");
+  if (invalid_faces > 0)
+    throw InputError(path + ": " + std::to_string(invalid_faces) +
+                     (invalid_faces == 1 ? " face names a vertex" : " faces name vertices") +
+                     " that the file does not have");
   if (mesh.n_faces() == 0) throw InputError(path + ": the mesh has no faces");
   return mesh;
 }

@@ -9,6 +9,7 @@
 #include "core/errors.h"
 #include "core/point_index.h"
 #include "core/shared_math.h"
+#include "io/openmesh_messages.h"
 #include "mesh/cloud_probe.h"
 #include "mesh/crossing_guard.h"
 #include "mesh/crossing_relaxation.h"
@@ -459,6 +460,7 @@ QuadMesh to_openmesh(const QuadSoup& soup, const std::string& source) {
   std::vector<QuadMesh::VertexHandle> handles;
   handles.reserve(soup.vertices.size());
   for (const auto& p : soup.vertices) handles.push_back(mesh.add_vertex(QuadMesh::Point(p.x(), p.y(), p.z())));
+  OpenMeshMessages quiet;  // the error below says it, in one line
   for (size_t f = 0; f < soup.quads.size(); ++f) {
     const auto& q = soup.quads[f];
     auto face =

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/errors.h"
+#include "io/openmesh_messages.h"
 
 namespace py = pybind11;
 
@@ -77,6 +78,7 @@ QuadMesh mesh_from_arrays(const DoubleArray& vertices, const IndexArray& faces, 
   }
   auto f = faces.unchecked<2>();
   std::vector<QuadMesh::VertexHandle> corners;
+  OpenMeshMessages quiet;  // a face OpenMesh refuses is named below, in one line
   for (py::ssize_t i = 0; i < faces.shape(0); ++i) {
     corners.clear();
     for (py::ssize_t k = 0; k < faces.shape(1); ++k) {

@@ -177,6 +177,34 @@ TEST(SkeletonIo, RejectsBadSkeletons) {
   expect_error("s.xyz", "", "unknown skeleton extension");
 }
 
+//! A mesh file OpenMesh cannot hold as it is: it dropped the face, or gave
+//! it copies of its corners, said so on the terminal and nothing else, and
+//! `mcquad metrics` measured what was left (three faces on one edge passed
+//! as 0 non-manifold vertices). Refused now, one line naming the file, and
+//! nothing of OpenMesh's own on stderr.
+TEST(MeshIo, RefusesMeshesOpenMeshCannotHold) {
+  TempDir dir;
+  const std::string square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nf 1 2 3 4\n";
+  auto expect_refused = [&](const std::string& name, const std::string& text, const std::string& fragment) {
+    const std::string path = dir.write(name, text);
+    testing::internal::CaptureStderr();
+    try {
+      read_mesh(path);
+      ADD_FAILURE() << "no error for " << name;
+    } catch (const InputError& e) {
+      std::string what = e.what();
+      EXPECT_NE(what.find(path), std::string::npos) << what;
+      EXPECT_NE(what.find(fragment), std::string::npos) << what;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << "one line: " << what;
+    }
+    EXPECT_EQ(testing::internal::GetCapturedStderr(), "") << name;
+  };
+  expect_refused("three-on-an-edge.obj", square + "f 2 1 5\nf 1 2 5\n", "not a manifold mesh: 1 face");
+  expect_refused("missing-vertex.obj", square + "f 1 2 9\n", "1 face names a vertex that the file does not have");
+  // A manifold file reads as before.
+  EXPECT_EQ(read_mesh(dir.write("fine.obj", square)).n_faces(), 1u);
+}
+
 TEST(MeshIo, WritesAtomicallyAndReportsUnwritableOutputs) {
   TempDir dir;
   QuadMesh mesh;
