@@ -10,6 +10,7 @@
 #include "core/errors.h"
 #include "io/file_utils.h"
 #include "io/point_cloud_io.h"
+#include "skeleton/bone_assignment.h"
 
 namespace mcquad {
 namespace {
@@ -58,21 +59,13 @@ class ShapeBuilder {
   std::vector<double> bone_radius;  //!< per skeleton edge
 };
 
-//! The largest radius of each node's bones.
-std::vector<double> largest_bone_radius_at_nodes(const SkeletonData& skeleton, const std::vector<double>& bone_radius) {
-  std::vector<double> radius(skeleton.nodes.size(), 0.0);
-  for (size_t e = 0; e < skeleton.edges.size(); ++e)
-    for (int end : skeleton.edges[e]) radius[size_t(end)] = std::max(radius[size_t(end)], bone_radius[e]);
-  return radius;
-}
-
 //! Pulls every end node back along its chain by `fraction` of its radius:
 //! nodes the cut passes are dropped, and the new end node lies exactly that
 //! far from the old one along the chain (at most up to the chain's next
 //! junction or end, less a tenth of its last bone).
 void shorten_ends(SkeletonData& skeleton, std::vector<double>& bone_radius, double fraction) {
   const size_t n = skeleton.nodes.size();
-  const std::vector<double> radius = largest_bone_radius_at_nodes(skeleton, bone_radius);
+  const std::vector<double> radius = widest_bone_radii(skeleton.nodes.size(), skeleton.edges, bone_radius);
   std::vector<std::vector<size_t>> bones_of(n);  // edge indices
   for (size_t e = 0; e < skeleton.edges.size(); ++e)
     for (int end : skeleton.edges[e]) bones_of[size_t(end)].push_back(e);
@@ -122,7 +115,7 @@ void shorten_ends(SkeletonData& skeleton, std::vector<double>& bone_radius, doub
 //! Moves every node off-centre by `fraction` of its radius, all the same
 //! way (a fixed direction made perpendicular to the node's bones).
 void offset_skeleton(SkeletonData& skeleton, const std::vector<double>& bone_radius, double fraction) {
-  const std::vector<double> radius = largest_bone_radius_at_nodes(skeleton, bone_radius);
+  const std::vector<double> radius = widest_bone_radii(skeleton.nodes.size(), skeleton.edges, bone_radius);
   std::vector<Vec> along(skeleton.nodes.size(), Vec::Zero());
   for (const auto& e : skeleton.edges) {
     Vec d = (skeleton.nodes[size_t(e[1])] - skeleton.nodes[size_t(e[0])]).normalized();

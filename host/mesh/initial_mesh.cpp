@@ -615,11 +615,16 @@ void untangle(QuadMesh& mesh) {
   }
 }
 
+//! A refined mesh and how many of its quads stay under
+//! CrossingGuard::kLeastScaledJacobian.
+struct RefinedMesh {
+  QuadMesh mesh;
+  size_t poor_left = 0;
+};
+
 //! refined() with the quads the refinement left poor straightened before
-//! the junctions are inflated (`straighten_first`) or not; `poor_left`
-//! receives how many quads stay under CrossingGuard::kLeastScaledJacobian.
-QuadMesh refined_with(const CoarseMesh& coarse, int levels, double junction_inflation, bool straighten_first,
-                      size_t* poor_left) {
+//! the junctions are inflated (`straighten_first`) or not.
+RefinedMesh refined_with(const CoarseMesh& coarse, int levels, double junction_inflation, bool straighten_first) {
   QuadMesh mesh = coarse.result.mesh;
   // Junctions are inflated at the default resolution (the unrefined mesh,
   // 8 vertices round a tube, is too coarse to follow the rays: its rings
@@ -644,31 +649,29 @@ QuadMesh refined_with(const CoarseMesh& coarse, int levels, double junction_infl
   // Moving back inside can fold a face in a tight crease. The unrefined
   // mesh (8 vertices round a tube) is only relaxed where it folds:
   // smoothing a crossing there would shrink whole tubes onto their bones.
-  *poor_left = 0;
+  size_t poor_left = 0;
   if (levels == 0) {
     relax_folds(mesh);
   } else {
     untangle(mesh);
-    *poor_left = relax_poor_quads(mesh, CrossingGuard::kLeastScaledJacobian);
+    poor_left = relax_poor_quads(mesh, CrossingGuard::kLeastScaledJacobian);
   }
-  return mesh;
+  return {std::move(mesh), poor_left};
 }
 
 QuadMesh refined(const CoarseMesh& coarse, int levels, double junction_inflation) {
-  size_t poor_left = 0;
-  QuadMesh mesh = refined_with(coarse, levels, junction_inflation, false, &poor_left);
-  if (poor_left == 0 || junction_inflation <= 0 || levels == 0) return mesh;
+  RefinedMesh first = refined_with(coarse, levels, junction_inflation, false);
+  if (first.poor_left == 0 || junction_inflation <= 0 || levels == 0) return std::move(first.mesh);
   // The inflation's guard holds a poor quad to where it starts, and the
   // crease vertices round it with it, so what the refinement left poor can
   // stay poor to the end (random tree 10: 0.10). Built again with those
   // quads straightened before the inflation, the mesh whose worst quad is
   // better is kept. Not always the second: straightened first, random tree
   // 8's worst quad fell from 0.30 to 0.01 (docs/CONSTRUCTION.md).
-  size_t straightened_poor_left = 0;
-  QuadMesh straightened = refined_with(coarse, levels, junction_inflation, true, &straightened_poor_left);
-  if (measure_quad_shape(straightened).min_scaled_jacobian > measure_quad_shape(mesh).min_scaled_jacobian)
-    return straightened;
-  return mesh;
+  RefinedMesh straightened = refined_with(coarse, levels, junction_inflation, true);
+  if (measure_quad_shape(straightened.mesh).min_scaled_jacobian > measure_quad_shape(first.mesh).min_scaled_jacobian)
+    return std::move(straightened.mesh);
+  return std::move(first.mesh);
 }
 
 CoarseMesh assemble_coarse_mesh(const TubeSkeleton& skeleton, const PointCloud& cloud,

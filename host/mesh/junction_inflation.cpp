@@ -6,6 +6,7 @@
 
 #include "mesh/crossing_guard.h"
 #include "mesh/mesh_arrays.h"
+#include "skeleton/bone_assignment.h"
 #include "skeleton/nearest_bone.h"
 
 namespace mcquad {
@@ -20,14 +21,6 @@ constexpr double kMostMoveInNearestDistance = 3.0;
 //! Rounds of smoothing the offsets (measured 0, 4 and 10: 4 took the Y's and
 //! the double junction's p95 down by a fifth, 10 changed little more).
 constexpr int kSmoothingRounds = 4;
-
-double largest_bone_radius(const TubeSkeleton& skeleton, int node) {
-  double largest = 0;
-  for (size_t b = 0; b < skeleton.graph.edges.size(); ++b)
-    if (skeleton.graph.edges[b][0] == node || skeleton.graph.edges[b][1] == node)
-      largest = std::max(largest, skeleton.bone_radius[b]);
-  return largest;
-}
 
 //! Weight of the move at distance s from the node: 1 within `inner`, then a
 //! cosine down to 0 at `outer`, so the inflated region joins the tubes
@@ -68,9 +61,10 @@ void inflate_junctions(QuadMesh& mesh, const TubeSkeleton& skeleton, const Cloud
   const SkeletonGraph& graph = skeleton.graph;
   const NearestBone bones(graph);
   auto position = [&](size_t v) { return Eigen::Vector3d(moved[3 * v], moved[3 * v + 1], moved[3 * v + 2]); };
+  const std::vector<double> widest = widest_bone_radii(graph.node_count(), graph.edges, skeleton.bone_radius);
   for (size_t node = 0; node < graph.node_count(); ++node) {
     if (graph.kind(int(node)) != NodeKind::kJunction) continue;
-    const double outer = kReachInRadii * largest_bone_radius(skeleton, int(node)), inner = 0.5 * outer;
+    const double outer = kReachInRadii * widest[node], inner = 0.5 * outer;
     const Eigen::Vector3d& center = graph.positions[node];
     std::vector<double> offset(vertex_count, 0.0);
     std::vector<bool> in_region(vertex_count, false);

@@ -62,6 +62,14 @@ void radii_of_bones_without_points(const SkeletonGraph& graph, const std::vector
 
 }  // namespace
 
+std::vector<double> widest_bone_radii(size_t node_count, const std::vector<std::array<int, 2>>& edges,
+                                      const std::vector<double>& bone_radius) {
+  std::vector<double> widest(node_count, 0.0);
+  for (size_t b = 0; b < edges.size(); ++b)
+    for (int end : edges[b]) widest[size_t(end)] = std::max(widest[size_t(end)], bone_radius[b]);
+  return widest;
+}
+
 double segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double* t) {
   Eigen::Vector3d ab = b - a;
   double length2 = ab.squaredNorm();
@@ -124,13 +132,10 @@ BoneAssignment assign_points_to_bones(const SkeletonGraph& graph, const PointClo
                        " from its bones on average, half its own size: the skeleton does not match the cloud");
   }
   // A node far from every cloud point lies outside the cloud. Judged by the
-  // widest of its bones: a junction on a trunk's axis lies the trunk's
-  // radius from the cloud, however thin a branch leaving it (node_radius,
-  // a junction's thinnest bone, refused a thin branch's junction: 0.99
-  // from the cloud against a branch radius of 0.22).
-  std::vector<double> widest(graph.node_count(), 0.0);
-  for (size_t b = 0; b < bone_count; ++b)
-    for (int end : graph.edges[b]) widest[size_t(end)] = std::max(widest[size_t(end)], result.bone_radius[b]);
+  // widest of its bones (node_radius, a junction's thinnest bone, refused a
+  // thin branch's junction: 0.99 from the cloud against a branch radius of
+  // 0.22).
+  const std::vector<double> widest = widest_bone_radii(graph.node_count(), graph.edges, result.bone_radius);
   for (size_t v = 0; v < graph.node_count(); ++v) {
     double gap = std::sqrt(double(cloud_index->nearest(graph.positions[v].cast<float>()).second));
     if (gap > 3.0 * widest[v] + 1e-12) {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,12 @@ BoneAssignment assign_points_to_bones(const SkeletonGraph& graph, const PointClo
                                       const PointIndex<float>* cloud_index = nullptr);
 
 //! Distance from p to segment [a, b] and the projection parameter in [0, 1].
+//! Per node, the radius of the widest of its bones (0 at a node no bone
+//! ends at): a junction on a trunk's axis lies the trunk's radius from its
+//! surface, however thin a branch leaving it.
+std::vector<double> widest_bone_radii(size_t node_count, const std::vector<std::array<int, 2>>& edges,
+                                      const std::vector<double>& bone_radius);
+
 double segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double* t);
 
 }  // namespace mcquad
