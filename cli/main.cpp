@@ -162,6 +162,9 @@ struct FitCommand {
     add_word_option(app, "--coarse-to-fine", e.coarse_to_fine, on_off_words(),
                     "robust mode, finer than the default resolution: evolve the default resolution's mesh first, then "
                     "refine it and evolve again (on, off)");
+    add_word_option(app, "--refine-uncovered", e.refine_uncovered, on_off_words(),
+                    "robust mode, at the default resolution: where the fit leaves the cloud uncovered (the verdict's "
+                    "bound), refine the fitted mesh once and evolve again (on, off)");
     app->add_option("--hit-band", e.hit_band,
                     "robust mode: a ray averages every cell within this fraction of epsilon of its first hit (0 = the "
                     "first cell only)")
@@ -282,6 +285,16 @@ struct FitCommand {
           "mean %.4g, 95 %% within %.4g; %zu pairs of faces cross\n",
           q.mesh_to_cloud.mean, q.mesh_to_cloud.p95, q.cloud_to_mesh.mean, q.cloud_to_mesh.p95,
           q.intersecting_face_pairs);
+    }
+    if (r.coverage_refinement && r.coverage_refinement->refined) {
+      const FitReport::CoverageRefinement& c = *r.coverage_refinement;
+      std::string worse;
+      for (const auto& name : c.worse) worse += (worse.empty() ? "" : ", ") + name;
+      std::printf(
+          "refined once for coverage: cloud points to the mesh, 95 %% within %.4g -> %.4g of the median radius "
+          "(bound %.4g); %s\n",
+          c.uncovered_at_default, c.uncovered_refined, c.bound,
+          c.kept ? "the finer fit kept" : ("the default fit kept (finer, worse: " + worse + ")").c_str());
     }
     if (r.surfaces && r.surfaces->cad_file) print_surface_summary(*r.surfaces, true);
     if (!report.empty()) std::printf("report: %s\n", report.c_str());

@@ -46,6 +46,11 @@ struct EvolutionParameters {
   //! default resolution's mesh first, refines it and evolves again
   //! (pipeline/fit.cpp, docs/DESIGN.md).
   bool coarse_to_fine = true;
+  //! Robust mode, at the default resolution (neither a resolution nor a
+  //! vertex target asked for): where the fitted mesh leaves the cloud
+  //! uncovered by the verdict's bound, it is refined once and evolved again,
+  //! coarse to fine (pipeline/fit.cpp, docs/DESIGN.md).
+  bool refine_uncovered = true;
   //! Robust mode: epsilon and the ray reach scale with the vertex's bone
   //! radius over the median radius (docs/DESIGN.md).
   bool local_epsilon = true;

@@ -47,6 +47,12 @@ std::vector<const VerdictCheck*> Verdict::failures() const {
   return failed;
 }
 
+const VerdictCheck* Verdict::find(const std::string& name) const {
+  for (const auto& check : checks)
+    if (check.name == name) return &check;
+  return nullptr;
+}
+
 Verdict judge_mesh(const QualityMetrics& m, double median_radius, long open_ends, const VerdictThresholds& t) {
   Verdict verdict;
   auto& checks = verdict.checks;

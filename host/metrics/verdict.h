@@ -28,6 +28,9 @@ struct Verdict {
   bool passed = true;
   std::vector<VerdictCheck> checks;
   std::vector<const VerdictCheck*> failures() const;
+  //! The check called `name` (nullptr when the verdict has none: a distance
+  //! check without a median radius, say).
+  const VerdictCheck* find(const std::string& name) const;
 };
 
 //! The bounds, as fractions of the median local radius where they are lengths.

@@ -21,6 +21,8 @@ nlohmann::json to_json(const FitReport::Parameters& p) {
           {"facing_cells", robust && e.facing_cells},
           {"min_facing", e.min_facing},
           {"curvature_correction", robust && e.curvature_correction},
+          {"coarse_to_fine", robust && e.coarse_to_fine},
+          {"refine_uncovered", robust && e.refine_uncovered},
           {"turned_face_rounds", robust ? e.turned_face_rounds : 0u},
           {"cones", e.cones},
           {"generators", e.generators},
@@ -97,6 +99,13 @@ nlohmann::json to_json(const FitReport& r) {
     report["evolution"] = to_json(*r.evolution);
   }
   if (r.coarse_evolution) report["coarse_evolution"] = to_json(*r.coarse_evolution);
+  if (r.coverage_refinement)
+    report["coverage_refinement"] = {{"bound", r.coverage_refinement->bound},
+                                     {"uncovered_at_default_resolution", r.coverage_refinement->uncovered_at_default},
+                                     {"refined", r.coverage_refinement->refined},
+                                     {"uncovered_refined", r.coverage_refinement->uncovered_refined},
+                                     {"worse_checks", r.coverage_refinement->worse},
+                                     {"kept", r.coverage_refinement->kept}};
   if (r.metrics) report["metrics"] = to_json(*r.metrics);
   if (r.verdict) report["verdict"] = to_json(*r.verdict);
   if (r.surfaces) report["surfaces"] = to_json(*r.surfaces);

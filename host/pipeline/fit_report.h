@@ -37,6 +37,17 @@ struct FitReport {
     //! Coarse to fine: levels added after the evolution at this resolution.
     int levels_after_coarse_evolution = 0;
   };
+  //! Robust mode at the default resolution (pipeline/fit.cpp,
+  //! refine_where_uncovered): the fit refined once where it left the cloud
+  //! uncovered, and which of the two fits was kept.
+  struct CoverageRefinement {
+    double bound = 0;                 //!< the verdict's bound on cloud -> mesh p95 over the median radius
+    double uncovered_at_default = 0;  //!< that measure at the default resolution
+    bool refined = false;             //!< it was over the bound: refined once and evolved again
+    double uncovered_refined = 0;     //!< the measure one level finer (when refined)
+    std::vector<std::string> worse;   //!< the refined fit's checks worse than the default fit's
+    bool kept = false;                //!< the refined fit is the result
+  };
   struct Cells {
     size_t cells = 0, tree_nodes = 0;
     int depth = 0;
@@ -64,10 +75,11 @@ struct FitReport {
   //! Coarse to fine (finer than the default resolution, robust mode): the
   //! evolution at the default resolution before the mesh was refined.
   std::optional<Evolution> coarse_evolution;
-  std::optional<QualityMetrics> metrics;             //!< when measured
-  std::optional<Verdict> verdict;                    //!< when measured
-  std::optional<SurfaceReport> surfaces;             //!< when B-spline surfaces were asked for
-  std::map<std::string, StageTimer::Record> stages;  //!< every stage run, by name
+  std::optional<CoverageRefinement> coverage_refinement;  //!< when judged (--refine-uncovered)
+  std::optional<QualityMetrics> metrics;                  //!< when measured
+  std::optional<Verdict> verdict;                         //!< when measured
+  std::optional<SurfaceReport> surfaces;                  //!< when B-spline surfaces were asked for
+  std::map<std::string, StageTimer::Record> stages;       //!< every stage run, by name
   double peak_resident_megabytes = 0;
   std::string output_mesh;  //!< the mesh file's absolute path, once written (empty: not written)
 };

@@ -26,6 +26,13 @@ double StageTimer::seconds(const std::string& stage) const {
   return found == records_.end() ? 0.0 : found->second.seconds;
 }
 
+void StageTimer::rename(const std::string& from, const std::string& to) {
+  auto found = records_.find(from);
+  if (found == records_.end()) return;
+  records_[to] = found->second;
+  records_.erase(found);
+}
+
 StageTimer::Scope::Scope(StageTimer& timer, std::string stage)
     : timer_(timer), stage_(std::move(stage)), start_(std::chrono::steady_clock::now()) {
   report_stage(stage_, false);

@@ -39,6 +39,9 @@ class StageTimer {
   const std::map<std::string, Record>& records() const { return records_; }
   //! Seconds the stage took (0 when it did not run).
   double seconds(const std::string& stage) const;
+  //! The stage recorded as `from` is recorded as `to` instead (nothing
+  //! when it did not run): a stage found afterwards to be the first of two.
+  void rename(const std::string& from, const std::string& to);
 
  private:
   //! Records the stage when it ends, also when it throws.

@@ -201,6 +201,7 @@ def fit(
     own_cells: bool = True,
     local_epsilon: bool = True,
     coarse_to_fine: bool = True,
+    refine_uncovered: bool = True,
     hit_band: float = 0.4,
     facing_cells: bool = True,
     min_facing: float = 0.7,
@@ -256,6 +257,8 @@ def fit(
         local_epsilon: robust mode: epsilon and the ray reach scale with the local radius.
         coarse_to_fine: robust mode, finer than the default resolution: evolve the default resolution's mesh
             first, then refine it and evolve again.
+        refine_uncovered: robust mode, at the default resolution: where the fit leaves the cloud uncovered (the
+            verdict's bound), refine the fitted mesh once and evolve again.
         hit_band: robust mode: a ray averages every cell within this fraction of epsilon of its first hit (0 to 1).
         facing_cells: robust mode, on a scan with normals: rays pass through cells whose scan normals face away
             from the vertex.

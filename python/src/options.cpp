@@ -83,6 +83,7 @@ const FieldTable<FitOptions>& fit_fields() {
       {"own_cells", nested(&O::evolution, &E::own_cells)},
       {"local_epsilon", nested(&O::evolution, &E::local_epsilon)},
       {"coarse_to_fine", nested(&O::evolution, &E::coarse_to_fine)},
+      {"refine_uncovered", nested(&O::evolution, &E::refine_uncovered)},
       {"hit_band", nested(&O::evolution, &E::hit_band)},
       {"facing_cells", nested(&O::evolution, &E::facing_cells)},
       {"min_facing", nested(&O::evolution, &E::min_facing)},
