@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "core/point_text.h"
 #include "core/errors.h"
 #include "core/progress.h"
 #include "generate/shapes.h"
@@ -236,6 +237,11 @@ struct FitCommand {
     options.measure = evolution;
     options.keep_initial_mesh = !html.empty();
     FitResult result = run_fit(points, skeleton, options);
+    if (result.report.skeleton_extraction)
+      for (const auto& limb : result.report.skeleton_extraction->dropped_limbs)
+        warn("the extracted skeleton's limb ending at " + point_text(limb.end) +
+             " was left out: its tube overlapped another at " + point_text(limb.overlap) +
+             " (the mesh does not reach that part of the scan)");
     write_mesh(output, result.mesh);
     result.report.output_mesh = std::filesystem::absolute(output).string();
     nlohmann::json json = to_json(result.report);

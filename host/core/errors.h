@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <stdexcept>
 #include <string>
 
@@ -16,6 +17,16 @@ class InputError : public std::runtime_error {
 class UnsupportedError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+//! An initial mesh whose tubes or blocks overlap, so that its faces do not
+//! make a manifold (an UnsupportedError): `site` says where, so that a fit
+//! that made the skeleton itself can leave that part out.
+class OverlapError : public UnsupportedError {
+ public:
+  OverlapError(const std::string& message, const std::array<double, 3>& where)
+      : UnsupportedError(message), site(where) {}
+  std::array<double, 3> site;
 };
 
 //! No usable OpenCL device, a failed kernel build, or a device fault.

@@ -8,6 +8,7 @@
 
 #include "core/errors.h"
 #include "core/point_index.h"
+#include "core/point_text.h"
 #include "core/shared_math.h"
 #include "io/openmesh_messages.h"
 #include "mesh/cloud_probe.h"
@@ -47,12 +48,6 @@ constexpr double kCubeFitDegrees = 25.0, kCubeFitDegreesBelowFive = 10.0;
 // (MeshAssembler::block_fraction). Measured: the generated thin branch
 // narrows to 0.21, the octopus's tapering arms to 0.39.
 constexpr double kLeastLimbNarrowing = 0.3;
-
-std::string point_text(const Eigen::Vector3d& p) {
-  std::ostringstream s;
-  s << "(" << p.transpose() << ")";
-  return s.str();
-}
 
 std::string node_name(const SkeletonGraph& graph, int node) {
   return "skeleton node at " + point_text(graph.positions[node]);
@@ -465,10 +460,12 @@ QuadMesh to_openmesh(const QuadSoup& soup, const std::string& source) {
     const auto& q = soup.quads[f];
     auto face =
         mesh.add_face(std::vector<QuadMesh::VertexHandle>{handles[q[0]], handles[q[1]], handles[q[2]], handles[q[3]]});
-    if (!face.is_valid())
-      throw UnsupportedError(source + ": the initial mesh is not a manifold at quad " + std::to_string(f) + " (at " +
-                             point_text(soup.vertices[size_t(q[0])]) +
-                             "): two tubes or blocks of this skeleton overlap there");
+    if (!face.is_valid()) {
+      const Eigen::Vector3d& at = soup.vertices[size_t(q[0])];
+      throw OverlapError(source + ": the initial mesh is not a manifold at quad " + std::to_string(f) + " (at " +
+                             point_text(at) + "): two tubes or blocks of this skeleton overlap there",
+                         {at.x(), at.y(), at.z()});
+    }
   }
   return mesh;
 }

@@ -14,6 +14,7 @@
 #include "mesh/face_intersections.h"
 #include "pipeline/make_backend.h"
 #include "pipeline/prepare.h"
+#include "skeleton/limb_removal.h"
 #include "skeleton/skeleton_graph.h"
 
 namespace mcquad {
@@ -175,6 +176,32 @@ FitReport::CoverageRefinement refine_where_uncovered(FitReport& report, QuadMesh
   return coverage;
 }
 
+//! The most limbs a fit leaves out of the skeleton it extracted.
+constexpr size_t kMaxDroppedLimbs = 4;
+
+//! `prepare()` on the skeleton the fit extracted; where its initial mesh
+//! overlaps itself (two tubes too close: the real armadillo's chest and
+//! ears), again without the limb nearest the overlap (skeleton and graph
+//! updated, the limb noted in `dropped`), at most kMaxDroppedLimbs times. A
+//! mesh of the rest, which the verdict judges, rather than none; a skeleton
+//! the user gave is never changed.
+EvolutionSetup prepare_without_overlapping_limbs(const std::function<EvolutionSetup()>& prepare, SkeletonData& skeleton,
+                                                 SkeletonGraph& graph, const std::string& source,
+                                                 std::vector<SkeletonReport::DroppedLimb>& dropped) {
+  while (true) {
+    try {
+      return prepare();
+    } catch (const OverlapError& overlap) {
+      const Eigen::Vector3d site(overlap.site[0], overlap.site[1], overlap.site[2]);
+      std::optional<Eigen::Vector3d> end;
+      if (dropped.size() < kMaxDroppedLimbs) end = remove_limb_nearest(skeleton, site);
+      if (!end) throw;
+      dropped.push_back({*end, site});
+      graph = build_skeleton_graph(skeleton, source);
+    }
+  }
+}
+
 //! The stages of one evolution, as evolve_mesh names them.
 constexpr const char* kEvolutionStages[] = {"backend_setup", "upload", "evolution", "turned_faces"};
 
@@ -229,8 +256,15 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
     scan.emplace(orient ? oriented : no_normals);
     return 0;
   });
-  EvolutionSetup setup = prepare_evolution(graph, cloud, initial_options, options.leaf_size, skeleton_path, scope,
-                                           &timer, facing ? &oriented : &no_normals);
+  auto prepare = [&] {
+    return prepare_evolution(graph, cloud, initial_options, options.leaf_size, skeleton_path, scope, &timer,
+                             facing ? &oriented : &no_normals);
+  };
+  EvolutionSetup setup = result.extracted_skeleton
+                             ? prepare_without_overlapping_limbs(prepare, input.skeleton, graph, skeleton_path,
+                                                                 report.skeleton_extraction->dropped_limbs)
+                             : prepare();
+  if (result.extracted_skeleton) result.extracted_skeleton = input.skeleton;
   if (!options.construction_skeleton.empty())
     write_skeleton_obj(options.construction_skeleton,
                        SkeletonData{setup.initial.skeleton.graph.positions, setup.initial.skeleton.graph.edges});

@@ -41,8 +41,13 @@ nlohmann::json to_json(const SkeletonReport& r) {
                                                             : "regular"},
                      {"degree", r.degrees[v]}});
   }
+  nlohmann::json dropped = nlohmann::json::array();
+  for (const auto& limb : r.dropped_limbs)
+    dropped.push_back({{"end", {limb.end.x(), limb.end.y(), limb.end.z()}},
+                       {"overlap", {limb.overlap.x(), limb.overlap.y(), limb.overlap.z()}}});
   return {{"points", r.points},
           {"nodes", nodes},
+          {"dropped_limbs", dropped},
           {"bones", r.bones},
           {"junctions", r.junctions},
           {"ends", r.ends},

@@ -23,6 +23,12 @@ struct SkeletonReport {
   double voxel_size = 0;
   size_t voxels = 0, discarded_voxels = 0;
   double seconds = 0;  //!< the extraction's (the reading excluded)
+  //! A limb the fit left out because its tube overlapped another's in the
+  //! initial mesh (pipeline/fit.cpp): its end node, and where the overlap was.
+  struct DroppedLimb {
+    Eigen::Vector3d end, overlap;
+  };
+  std::vector<DroppedLimb> dropped_limbs;
 };
 
 SkeletonReport skeleton_report(const ExtractedSkeleton& extracted, const std::string& points_name, double seconds);

@@ -6,18 +6,12 @@
 
 #include "core/errors.h"
 #include "core/point_index.h"
+#include "core/point_text.h"
 #include "skeleton/acute_junctions.h"
 #include "skeleton/nearest_bone.h"
 
 namespace mcquad {
 namespace {
-
-//! "(x, y, z)" for messages.
-std::string point_text(const Eigen::Vector3d& p) {
-  std::ostringstream s;
-  s << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
-  return s.str();
-}
 
 double median(std::vector<float>& values) {
   if (values.empty()) return 0.0;
