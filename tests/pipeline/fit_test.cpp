@@ -79,6 +79,18 @@ std::optional<FitResult> fit_default(const GeneratedShape& shape, BackendKind ki
   }
 }
 
+//! The default fit with the refinement for coverage off, then on; nothing
+//! where OpenCL has no device.
+struct FitsBothWays {
+  FitResult plain, refined;
+};
+std::optional<FitsBothWays> fit_both_ways(const GeneratedShape& shape, BackendKind kind) {
+  auto plain = fit_default(shape, kind, false);
+  auto refined = fit_default(shape, kind, true);
+  if (!plain || !refined) return std::nullopt;
+  return FitsBothWays{std::move(*plain), std::move(*refined)};
+}
+
 const VerdictCheck& uncovered_check(const FitResult& fit) {
   const VerdictCheck* check = fit.report.verdict->find("uncovered_cloud");
   EXPECT_NE(check, nullptr);
@@ -95,10 +107,10 @@ class CoverageRefinement : public testing::TestWithParam<BackendKind> {};
 TEST_P(CoverageRefinement, AFitLeftUncoveredIsRefinedOnceAndCovers) {
   ShapeOptions y15;
   y15.angle_degrees = 15;
-  GeneratedShape shape = test::small_shape("y-fork", 40000, y15);
-  auto plain = fit_default(shape, GetParam(), false);
-  auto refined = fit_default(shape, GetParam(), true);
-  if (!plain || !refined) return;
+  auto fits = fit_both_ways(test::small_shape("y-fork", 40000, y15), GetParam());
+  if (!fits) return;
+  const FitResult* plain = &fits->plain;
+  const FitResult* refined = &fits->refined;
   EXPECT_FALSE(uncovered_check(*plain).passed);
   ASSERT_TRUE(refined->report.coverage_refinement.has_value());
   const auto& coverage = *refined->report.coverage_refinement;
@@ -143,10 +155,10 @@ TEST_P(CoverageRefinement, KeepsTheDefaultFitWhereRefiningCannotHelp) {
 TEST_P(CoverageRefinement, KeepsTheDefaultFitWhereTheRefinedOneIsWorseElsewhere) {
   ShapeOptions star;
   star.arms = 8;
-  GeneratedShape shape = test::small_shape("planar-star", 30000, star);
-  auto plain = fit_default(shape, GetParam(), false);
-  auto tried = fit_default(shape, GetParam(), true);
-  if (!plain || !tried) return;
+  auto fits = fit_both_ways(test::small_shape("planar-star", 30000, star), GetParam());
+  if (!fits) return;
+  const FitResult* plain = &fits->plain;
+  const FitResult* tried = &fits->refined;
   ASSERT_TRUE(tried->report.coverage_refinement.has_value());
   const auto& coverage = *tried->report.coverage_refinement;
   EXPECT_TRUE(coverage.refined);
