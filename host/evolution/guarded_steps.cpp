@@ -1,6 +1,6 @@
 #include "evolution/guarded_steps.h"
 
-#include "evolution/tangential_relaxation.h"
+#include "core/shared_math.h"
 
 namespace mcquad {
 namespace {
@@ -12,8 +12,16 @@ namespace {
 //! it cross less once they are spread out (docs/DESIGN.md).
 void relax_held_back(const MeshArrays& mesh, CrossingGuard& guard, const std::vector<uint32_t>& held, float weight,
                      std::vector<float>& positions) {
-  std::vector<float> relaxed = positions;
-  relax_tangentially(mesh, positions, held, weight, relaxed);
+  std::vector<float> normals(positions.size(), 0.0f), relaxed = positions;
+  for (uint32_t v : held)
+    device::mcq_store3(normals.data(), v,
+                       device::mcq_vertex_normal(positions.data(), mesh.faces.data(), mesh.vertex_face_offsets.data(),
+                                                 mesh.vertex_faces.data(), v));
+  for (uint32_t v : held)
+    device::mcq_store3(relaxed.data(), v,
+                       device::mcq_relaxed_position(positions.data(), normals.data(), mesh.faces.data(),
+                                                    mesh.vertex_face_offsets.data(), mesh.vertex_faces.data(),
+                                                    mesh.boundary.data(), v, weight));
   guard.apply(positions, relaxed);
   positions.swap(relaxed);
 }

@@ -4,7 +4,6 @@
 #include <set>
 
 #include "evolution/evolve.h"
-#include "evolution/tangential_relaxation.h"
 #include "mesh/crossing_guard.h"
 #include "mesh/folds.h"
 
@@ -21,20 +20,10 @@ std::vector<int> faces_round(const QuadMesh& mesh, const std::set<int>& vertices
   return faces;
 }
 
-//! The vertices next to `region` and not in it (its one-ring).
-std::vector<uint32_t> ring_round(const QuadMesh& mesh, const std::set<int>& region) {
-  std::set<int> grown = region;
-  grow_region(mesh, grown, 1);
-  std::vector<uint32_t> ring;
-  for (int v : grown)
-    if (!region.count(v)) ring.push_back(uint32_t(v));
-  return ring;
-}
-
 }  // namespace
 
 TurnedFaceSmoothing smooth_turned_faces(QuadMesh& mesh, const MeshArrays& start, const ScanOrientation& scan,
-                                        int rounds, float ring_weight) {
+                                        int rounds) {
   TurnedFaceSmoothing result;
   if (scan.empty()) return result;
   std::vector<int> turned = scan.inward_faces(mesh);
@@ -49,13 +38,6 @@ TurnedFaceSmoothing smooth_turned_faces(QuadMesh& mesh, const MeshArrays& start,
     std::vector<float> after = before;
     for (int v : corners)
       for (int k = 0; k < 3; ++k) after[3 * size_t(v) + size_t(k)] = float(mesh.point(mesh.vertex_handle(v))[k]);
-    // Their neighbours spread out along the surface, so the corners have
-    // room to move where the guard held them against a neighbour's quad.
-    if (ring_weight > 0) {
-      std::vector<uint32_t> ring = ring_round(mesh, corners);
-      relax_tangentially(start, before, ring, ring_weight, after);
-      corners.insert(ring.begin(), ring.end());
-    }
     guard.apply(before, after);
     // The guard's shortened moves, back into the mesh (the float positions
     // are the evolution's; the mesh then holds exactly what is written).

@@ -21,11 +21,6 @@ struct TurnedFaceSmoothing {
   bool undone_for_crossings = false;
 };
 
-//! How far the turned faces' corners' one-ring moves toward its neighbours'
-//! mean each round, within its tangent planes (docs/DESIGN.md, "Turned faces
-//! in creases": with 1, the octopus kept more of its area turned).
-constexpr float kRingRelaxation = 0.5f;
-
 //! Robust mode, after the evolution, on a scan with normals: where tubes meet
 //! at a narrow crease, vertices from both walls settle on the surface but
 //! the faces between them can end up turned against the scan. Each round
@@ -35,14 +30,11 @@ constexpr float kRingRelaxation = 0.5f;
 //! bottom and turns the faces back out; the crossing guard, started from
 //! `start` (the positions the evolution started from, as the evolution's
 //! own guard), shortens any move that would make faces cross, fold or turn
-//! over. The corners' one-ring moves with them, `ring_weight` of the way to
-//! its neighbours' mean within its tangent planes (0: it stays), so a
-//! corner held against a neighbour's long thin quad gets room. It stops
-//! when no face faces inward, after `rounds` rounds, or when the guard
-//! holds every move back. Creases come out slightly rounded (docs/DESIGN.md,
-//! "Turned faces in creases", has the measurements).
+//! over. It stops when no face faces inward, after `rounds` rounds, or when
+//! the guard holds every move back. Creases come out slightly rounded
+//! (docs/DESIGN.md, "Turned faces in creases", has the measurements).
 TurnedFaceSmoothing smooth_turned_faces(QuadMesh& mesh, const MeshArrays& start, const ScanOrientation& scan,
-                                        int rounds, float ring_weight = kRingRelaxation);
+                                        int rounds);
 
 //! Evolution steps after the first smoothing pass (turn_faces_out).
 constexpr unsigned kSettleIterations = 3;

@@ -10,7 +10,6 @@
 #include "mesh/face_intersections.h"
 #include "mesh/folds.h"
 #include "mesh/quad_shape.h"
-#include "pipeline/fit.h"
 #include "metrics/surface_distance.h"
 
 namespace mcquad {
@@ -128,30 +127,6 @@ TEST(TurnedFaceSmoothing, TouchesOnlyTurnedFaces) {
   EXPECT_EQ(all.rounds, 3);
   EXPECT_EQ(intersecting_face_pairs(mesh).size(), 0u);
   EXPECT_EQ(folded_edges(mesh), 0u);
-}
-
-//! The double junction's creases after the evolution: moving the turned
-//! faces' corners alone, the guard holds them against their neighbours'
-//! long thin quads; with their one-ring spread along the surface too, less
-//! area stays turned against the scan, and still no face pair crosses or
-//! folds.
-TEST(TurnedFaceSmoothing, SpreadingTheCornersRingFreesThem) {
-  GeneratedShape shape = test::small_shape("double-junction", 40000);
-  FitOptions options;
-  options.backend = BackendKind::kSerial;
-  options.evolution.turned_face_rounds = 0;
-  options.keep_initial_mesh = true;
-  FitResult evolved = run_fit(FitInput{shape.cloud, shape.skeleton}, options);
-  const MeshArrays start = flatten_mesh(evolved.initial_mesh);
-  const OrientedSample normals = oriented_sample(shape.cloud);
-  const ScanOrientation scan(normals);
-  QuadMesh corners_only = evolved.mesh, with_ring = evolved.mesh;
-  TurnedFaceSmoothing alone = smooth_turned_faces(corners_only, start, scan, 20, 0.0f);
-  TurnedFaceSmoothing ring = smooth_turned_faces(with_ring, start, scan, 20);
-  ASSERT_GT(alone.area_before, 0.0) << "a mesh with nothing turned proves nothing";
-  EXPECT_LT(ring.area_after, alone.area_after);
-  EXPECT_EQ(intersecting_face_pairs(with_ring).size(), 0u);
-  EXPECT_EQ(folded_edges(with_ring), 0u);
 }
 
 }  // namespace
