@@ -10,6 +10,9 @@
 namespace mcquad {
 namespace {
 
+//! The faces the smoothing turns out: turned as a whole (ScanOrientation::FaceTest).
+constexpr ScanOrientation::FaceTest kTurned = ScanOrientation::FaceTest::kWhole;
+
 //! The faces round the given vertices: the only ones a move of them turns.
 std::vector<int> faces_round(const QuadMesh& mesh, const std::set<int>& vertices) {
   std::vector<int> faces;
@@ -26,7 +29,7 @@ TurnedFaceSmoothing smooth_turned_faces(QuadMesh& mesh, const MeshArrays& start,
                                         int rounds) {
   TurnedFaceSmoothing result;
   if (scan.empty()) return result;
-  std::vector<int> turned = scan.inward_faces(mesh);
+  std::vector<int> turned = scan.inward_faces(mesh, nullptr, kTurned);
   result.faces_before = result.faces_after = turned.size();
   result.area_before = result.area_after = area_fraction(mesh, turned);
   if (turned.empty() || rounds <= 0) return result;
@@ -47,7 +50,7 @@ TurnedFaceSmoothing smooth_turned_faces(QuadMesh& mesh, const MeshArrays& start,
     bool moved = after != before;
     before.swap(after);
     std::vector<int> around = faces_round(mesh, corners);
-    turned = scan.inward_faces(mesh, &around);
+    turned = scan.inward_faces(mesh, &around, kTurned);
     if (!moved) break;
   }
   result.faces_after = turned.size();

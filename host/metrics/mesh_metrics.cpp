@@ -43,7 +43,7 @@ QualityMetrics measure_quality(const QuadMesh& mesh, const PointCloud& cloud, co
     std::vector<int> inward = by_normals ? scan->inward_faces(mesh) : inward_face_indices(mesh, *skeleton);
     m.inward_reference = by_normals ? "scan normals" : "skeleton";
     m.inward_faces = long(inward.size());
-    m.inward_area_fraction = area_fraction(mesh, inward);
+    m.inward_area_fraction = by_normals ? scan->inward_area_fraction(mesh, inward) : area_fraction(mesh, inward);
     std::vector<double> areas;
     areas.reserve(inward.size());
     for (int f : inward) areas.push_back(face_vector_area(mesh, mesh.face_handle(f)).norm());
