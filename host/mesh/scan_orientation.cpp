@@ -1,6 +1,7 @@
 #include "mesh/scan_orientation.h"
 
 #include <array>
+#include <optional>
 
 namespace mcquad {
 
@@ -16,33 +17,54 @@ bool ScanOrientation::faces_inward(const QuadMesh& mesh, int face, FaceTest test
   return against_scan(face_centroid(mesh, face), face_vector_area(mesh, mesh.face_handle(face)));
 }
 
-double ScanOrientation::inward_area(const QuadMesh& mesh, int face) const {
+namespace {
+
+//! A face's corners when it is a quad.
+std::optional<std::array<Eigen::Vector3d, 4>> quad_corners(const QuadMesh& mesh, int face) {
   std::array<Eigen::Vector3d, 4> corner;
-  int corners = 0;
+  size_t corners = 0;
   for (auto v : mesh.fv_range(mesh.face_handle(face))) {
-    if (corners == 4) {
-      corners = 5;  // not a quad
-      break;
-    }
+    if (corners == 4) return std::nullopt;
     const auto& p = mesh.point(v);
-    corner[size_t(corners++)] = Eigen::Vector3d(p[0], p[1], p[2]);
+    corner[corners++] = Eigen::Vector3d(p[0], p[1], p[2]);
   }
-  if (corners != 4) {
+  if (corners != 4) return std::nullopt;
+  return corner;
+}
+
+//! The normal (twice the area) of triangle `t` (0: corners 0 1 2, 1: 0 2 3)
+//! of the split a viewer draws a quad with.
+Eigen::Vector3d drawn_triangle_normal(const std::array<Eigen::Vector3d, 4>& q, int t) {
+  return (q[size_t(1 + t)] - q[0]).cross(q[size_t(2 + t)] - q[0]);
+}
+
+//! The area a viewer draws of face `face`: its two triangles' for a quad.
+double drawn_area(const QuadMesh& mesh, int face) {
+  auto q = quad_corners(mesh, face);
+  if (!q) return 0.5 * face_vector_area(mesh, mesh.face_handle(face)).norm();
+  return 0.5 * (drawn_triangle_normal(*q, 0).norm() + drawn_triangle_normal(*q, 1).norm());
+}
+
+}  // namespace
+
+double ScanOrientation::inward_area(const QuadMesh& mesh, int face) const {
+  auto q = quad_corners(mesh, face);
+  if (!q) {
     Eigen::Vector3d normal = face_vector_area(mesh, mesh.face_handle(face));
     return against_scan(face_centroid(mesh, face), normal) ? 0.5 * normal.norm() : 0.0;
   }
   double area = 0;
   for (int t = 0; t < 2; ++t) {
-    const Eigen::Vector3d &a = corner[0], &b = corner[size_t(1 + t)], &c = corner[size_t(2 + t)];
-    Eigen::Vector3d normal = (b - a).cross(c - a);
-    if (against_scan((a + b + c) / 3.0, normal)) area += 0.5 * normal.norm();
+    Eigen::Vector3d normal = drawn_triangle_normal(*q, t);
+    Eigen::Vector3d centroid = ((*q)[0] + (*q)[size_t(1 + t)] + (*q)[size_t(2 + t)]) / 3.0;
+    if (against_scan(centroid, normal)) area += 0.5 * normal.norm();
   }
   return area;
 }
 
 double ScanOrientation::inward_area_fraction(const QuadMesh& mesh, const std::vector<int>& faces) const {
   double total = 0, part = 0;
-  for (auto f : mesh.faces()) total += 0.5 * face_vector_area(mesh, f).norm();
+  for (auto f : mesh.faces()) total += drawn_area(mesh, f.idx());
   for (int f : faces) part += inward_area(mesh, f);
   return total > 0 ? part / total : 0.0;
 }

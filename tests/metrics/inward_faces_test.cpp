@@ -91,5 +91,28 @@ TEST(OrientedSample, KeepsOnlyUsableNormalsAndAtMostTheAskedNumber) {
   EXPECT_TRUE(oriented_sample(cloud).empty());
 }
 
+//! A quad bent like a roof along its 0-2 diagonal, over a scan whose
+//! normal at the raised triangle (corners 0 2 3, as a viewer draws it)
+//! points across it, and up elsewhere, nearest the quad's centre too: that
+//! triangle is turned, the quad's mean normal is not. Judged by triangles
+//! the quad faces inward, by exactly that triangle's area; judged whole it
+//! does not.
+TEST(InwardFaces, ABentQuadIsTurnedWhereOneOfItsTrianglesIs) {
+  QuadMesh mesh;
+  std::vector<QuadMesh::VertexHandle> v{
+      mesh.add_vertex(QuadMesh::Point(0, 0, 0)), mesh.add_vertex(QuadMesh::Point(2, 0, 0)),
+      mesh.add_vertex(QuadMesh::Point(2, 2, 0)), mesh.add_vertex(QuadMesh::Point(0, 2, 2))};
+  mesh.add_face(v);
+  OrientedSample scan;
+  scan.points = {{4.0f / 3, 2.0f / 3, 0}, {2.0f / 3, 4.0f / 3, 2.0f / 3}, {1, 1, 0.45f}};
+  scan.normals = {{0, 0, 1}, {0, 1, 0}, {0, 0, 1}};
+  ScanOrientation orientation(scan);
+  EXPECT_TRUE(orientation.faces_inward(mesh, 0, ScanOrientation::FaceTest::kTriangles));
+  EXPECT_FALSE(orientation.faces_inward(mesh, 0, ScanOrientation::FaceTest::kWhole));
+  const double flat = 2.0, raised = 0.5 * Eigen::Vector3d(4, -4, 4).norm();  // triangles 0 1 2 and 0 2 3
+  EXPECT_NEAR(orientation.inward_area(mesh, 0), raised, 1e-6);
+  EXPECT_NEAR(orientation.inward_area_fraction(mesh, {0}), raised / (flat + raised), 1e-6);
+}
+
 }  // namespace
 }  // namespace mcquad
