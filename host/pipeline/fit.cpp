@@ -180,8 +180,8 @@ FitReport::CoverageRefinement refine_where_uncovered(FitReport& report, QuadMesh
 constexpr size_t kMaxDroppedLimbs = 4;
 
 //! `prepare()` on the skeleton the fit extracted; where its initial mesh
-//! overlaps itself (two tubes too close: the real armadillo's chest and
-//! ears), again without the limb nearest the overlap (skeleton and graph
+//! overlaps itself (two tubes too close: two of the real armadillo's
+//! limbs), again without the limb nearest the overlap (skeleton and graph
 //! updated, the limb noted in `dropped`), at most kMaxDroppedLimbs times. A
 //! mesh of the rest, which the verdict judges, rather than none; a skeleton
 //! the user gave is never changed.
