@@ -12,11 +12,6 @@ bool ScanOrientation::against_scan(const Eigen::Vector3d& centroid, const Eigen:
   return nearest >= 0 && normal.dot(sample_.normals[size_t(nearest)].cast<double>()) < 0;
 }
 
-bool ScanOrientation::faces_inward(const QuadMesh& mesh, int face, FaceTest test) const {
-  if (test == FaceTest::kTriangles) return inward_area(mesh, face) > 0;
-  return against_scan(face_centroid(mesh, face), face_vector_area(mesh, mesh.face_handle(face)));
-}
-
 namespace {
 
 //! A face's corners when it is a quad.
@@ -47,12 +42,14 @@ double drawn_area(const QuadMesh& mesh, int face) {
 
 }  // namespace
 
+bool ScanOrientation::faces_inward(const QuadMesh& mesh, int face, FaceTest test) const {
+  if (test == FaceTest::kTriangles) return inward_area(mesh, face) > 0;
+  return against_scan(face_centroid(mesh, face), face_vector_area(mesh, mesh.face_handle(face)));
+}
+
 double ScanOrientation::inward_area(const QuadMesh& mesh, int face) const {
   auto q = quad_corners(mesh, face);
-  if (!q) {
-    Eigen::Vector3d normal = face_vector_area(mesh, mesh.face_handle(face));
-    return against_scan(face_centroid(mesh, face), normal) ? 0.5 * normal.norm() : 0.0;
-  }
+  if (!q) return faces_inward(mesh, face, FaceTest::kWhole) ? drawn_area(mesh, face) : 0.0;
   double area = 0;
   for (int t = 0; t < 2; ++t) {
     Eigen::Vector3d normal = drawn_triangle_normal(*q, t);

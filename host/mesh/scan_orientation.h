@@ -13,10 +13,12 @@ namespace mcquad {
 //! oriented point nearest that triangle's centroid. A quad is drawn as the
 //! triangles of corners 0 1 2 and 0 2 3 (as OBJ and PLY readers split it);
 //! a bent quad can have one of them turned and a mean normal that is not
-//! (the real hand's and armadillo's fits had twice the area turned counted
-//! by triangles as by quads). The one copy of that test: the verdict and `mcquad metrics`
-//! count inward faces with it, and robust mode's smoothing of turned faces
-//! (evolution/turned_face_smoothing.h) looks for them with it.
+//! (counted by triangles, the real hand's default fit had 2.5 times the
+//! area turned it had counted by quads, the armadillo's 7 times). The one
+//! copy of that test: the verdict and `mcquad metrics` count inward faces
+//! with it, and robust mode's smoothing of turned faces
+//! (evolution/turned_face_smoothing.h) looks for them with its whole-face
+//! variant (FaceTest).
 class ScanOrientation {
  public:
   //! `sample` must outlive this and stay unchanged. Its order changes

@@ -56,6 +56,14 @@ std::future<std::unique_ptr<EvolutionBackend>> start_opencl_backend(const FitOpt
   });
 }
 
+//! The stages of one evolution as evolve_mesh times them (after its
+//! prefix), named once: a fit refined for coverage renames the first ones.
+constexpr const char* kBackendSetupStage = "backend_setup";
+constexpr const char* kUploadStage = "upload";
+constexpr const char* kEvolutionStage = "evolution";
+constexpr const char* kTurnedFacesStage = "turned_faces";
+constexpr const char* kEvolutionStages[] = {kBackendSetupStage, kUploadStage, kEvolutionStage, kTurnedFacesStage};
+
 //! Runs the evolution on the prepared setup and leaves its positions in
 //! `mesh`; its stages are timed as `stage_prefix` + the stage's name. The
 //! backend is `early_backend`'s when it holds one (taken), else made here.
@@ -63,11 +71,11 @@ FitReport::Evolution evolve_mesh(EvolutionSetup& setup, const FitOptions& option
                                  const EvolutionParameters& parameters, const ScanOrientation& scan, QuadMesh& mesh,
                                  StageTimer& timer, std::future<std::unique_ptr<EvolutionBackend>>& early_backend,
                                  const std::string& stage_prefix = "", QuadMesh* unsmoothed = nullptr) {
-  auto backend = timer.run(stage_prefix + "backend_setup", [&] {
+  auto backend = timer.run(stage_prefix + kBackendSetupStage, [&] {
     std::unique_ptr<EvolutionBackend> early = early_backend.valid() ? early_backend.get() : nullptr;
     return early ? std::move(early) : make_backend(options.backend, options.device);
   });
-  timer.run(stage_prefix + "upload", [&] {
+  timer.run(stage_prefix + kUploadStage, [&] {
     backend->load(setup.cells, setup.arrays, setup.regions);
     return 0;
   });
@@ -75,7 +83,7 @@ FitReport::Evolution evolve_mesh(EvolutionSetup& setup, const FitOptions& option
   if (!options.snapshots_directory.empty() && stage_prefix.empty())
     snapshot = snapshot_writer(options.snapshots_directory, mesh);
   EvolutionResult evolution =
-      timer.run(stage_prefix + "evolution", [&] { return evolve(*backend, setup.arrays, parameters, snapshot); });
+      timer.run(stage_prefix + kEvolutionStage, [&] { return evolve(*backend, setup.arrays, parameters, snapshot); });
   set_positions(mesh, evolution.positions);
   FitReport::Evolution report;
   report.backend = backend->name();
@@ -85,7 +93,7 @@ FitReport::Evolution evolve_mesh(EvolutionSetup& setup, const FitOptions& option
   report.stop_reason = evolution.stop_reason;
   if (parameters.mode == EvolutionParameters::Mode::kRobust && parameters.turned_face_rounds > 0 && !scan.empty()) {
     if (unsmoothed) *unsmoothed = mesh;
-    report.turned_faces = timer.run(stage_prefix + "turned_faces", [&] {
+    report.turned_faces = timer.run(stage_prefix + kTurnedFacesStage, [&] {
       return turn_faces_out(*backend, setup.arrays, parameters, scan, mesh, unsigned(report.iterations.size()));
     });
   }
@@ -154,12 +162,15 @@ FitReport::CoverageRefinement refine_where_uncovered(FitReport& report, QuadMesh
   // mesh does not reach either (on the hand, 0.23 -> 0.10 of the median
   // radius, and 2.6 times the time).
   if (uncovered.passed || uncovered.value > kChordErrorFallPerLevel * uncovered.threshold) return coverage;
-  FitReport coarse = report;
-  QuadMesh coarse_mesh = mesh;
+  // What the default fit's report says of it, for when it is kept after all.
+  FitReport::Evolution default_evolution = *report.evolution;
+  QualityMetrics default_metrics = *report.metrics;
+  Verdict default_verdict = *report.verdict;
+  QuadMesh default_mesh = mesh;
   refine_and_evolve();
   coverage.refined = true;
   coverage.uncovered_refined = report.verdict->find(uncovered.name)->value;
-  for (const VerdictCheck& check : coarse.verdict->checks) {
+  for (const VerdictCheck& check : default_verdict.checks) {
     const VerdictCheck* now = report.verdict->find(check.name);
     if (now && check.name != uncovered.name && worse(*now, check)) coverage.worse.push_back(check.name);
   }
@@ -167,11 +178,11 @@ FitReport::CoverageRefinement refine_where_uncovered(FitReport& report, QuadMesh
   if (coverage.kept) {
     report.initial_mesh.levels_after_coarse_evolution = 1;
   } else {
-    report.evolution = std::move(coarse.evolution);
+    report.evolution = std::move(default_evolution);
     report.coarse_evolution.reset();
-    report.metrics = std::move(coarse.metrics);
-    report.verdict = std::move(coarse.verdict);
-    mesh = coarse_mesh;
+    report.metrics = std::move(default_metrics);
+    report.verdict = std::move(default_verdict);
+    mesh = default_mesh;
   }
   return coverage;
 }
@@ -201,9 +212,6 @@ EvolutionSetup prepare_without_overlapping_limbs(const std::function<EvolutionSe
     }
   }
 }
-
-//! The stages of one evolution, as evolve_mesh names them.
-constexpr const char* kEvolutionStages[] = {"backend_setup", "upload", "evolution", "turned_faces"};
 
 //! The stages from the graph on, with the reading already timed.
 FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& timer) {

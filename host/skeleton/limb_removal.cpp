@@ -4,16 +4,9 @@
 #include <limits>
 #include <vector>
 
+#include "skeleton/bone_assignment.h"
+
 namespace mcquad {
-namespace {
-
-double distance_to_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  Eigen::Vector3d ab = b - a;
-  double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-  return (p - a - t * ab).norm();
-}
-
-}  // namespace
 
 std::optional<Eigen::Vector3d> remove_limb_nearest(SkeletonData& skeleton, const Eigen::Vector3d& site) {
   const size_t n = skeleton.nodes.size();
@@ -32,8 +25,8 @@ std::optional<Eigen::Vector3d> remove_limb_nearest(SkeletonData& skeleton, const
     while (true) {
       int next = neighbours[size_t(current)][0] == previous ? neighbours[size_t(current)].back()
                                                             : neighbours[size_t(current)][0];
-      distance =
-          std::min(distance, distance_to_segment(site, skeleton.nodes[size_t(current)], skeleton.nodes[size_t(next)]));
+      distance = std::min(
+          distance, segment_distance(site, skeleton.nodes[size_t(current)], skeleton.nodes[size_t(next)], nullptr));
       previous = current;
       current = next;
       if (neighbours[size_t(current)].size() != 2) break;
