@@ -188,6 +188,10 @@ struct FitCommand {
                     "against the scan's normals after the evolution (0 = off)")
         ->check(range("turned_face_rounds"))
         ->capture_default_str();
+    add_word_option(app, "--push-deep", e.push_deep, on_off_words(),
+                    "robust mode, on a scan with normals, with the smoothing of turned faces: push vertices left deep "
+                    "below the scan out first; the pushed fit is kept where it turns no more area against the scan "
+                    "(on, off)");
     app->add_option("--iterations", e.iterations, "maximal number of iterations")->capture_default_str();
     app->add_option("--tolerance", e.tolerance,
                     "stop when the error level improves by less than this fraction (0 = never)")

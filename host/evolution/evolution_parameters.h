@@ -75,6 +75,11 @@ struct EvolutionParameters {
   //! many rounds of smoothing the faces turned against the scan's normals
   //! (evolution/turned_face_smoothing.h); 0 = off.
   unsigned turned_face_rounds = 20;
+  //! Robust mode, on a scan with normals, with the smoothing of turned faces:
+  //! vertices left deep below the scan are pushed out first, and the fit so
+  //! pushed is kept where it turns no more of its area against the scan
+  //! (evolution/deep_vertex_push.h, turned_face_smoothing.h).
+  bool push_deep = true;
 };
 
 }  // namespace mcquad

@@ -19,6 +19,10 @@ struct TurnedFaceSmoothing {
   //! Coarse to fine: the smoothed coarse fit crossed itself once refined,
   //! so the fit refined and evolved further is the one from before (pipeline/fit.cpp).
   bool undone_for_crossings = false;
+  //! Deep vertices pushed out first (evolution/deep_vertex_push.h): the
+  //! rounds that moved something, and whether the pushed fit was kept.
+  int deep_push_rounds = 0;
+  bool deep_push_kept = false;
 };
 
 //! Robust mode, after the evolution, on a scan with normals: where tubes meet
@@ -48,6 +52,11 @@ constexpr unsigned kSettleIterations = 3;
 //! smoothed once more. On the hand scan the smoothing alone halved the
 //! turned area but let the cloud -> mesh 95th percentile grow by a third;
 //! settling keeps the first and takes back the second (docs/DESIGN.md).
+//! With parameters.push_deep (and an evolution of at least one iteration),
+//! the same is done a second time on a copy whose
+//! deep vertices were pushed out first (push_deep_vertices, kDeepVertexDepth
+//! epsilon deep, then kSettleIterations steps): that copy is kept when the
+//! area it turns against the scan (as the verdict counts it) is no larger.
 TurnedFaceSmoothing turn_faces_out(EvolutionBackend& backend, const MeshArrays& start,
                                    const EvolutionParameters& parameters, const ScanOrientation& scan, QuadMesh& mesh,
                                    unsigned first_iteration);

@@ -12,6 +12,14 @@ bool ScanOrientation::against_scan(const Eigen::Vector3d& centroid, const Eigen:
   return nearest >= 0 && normal.dot(sample_.normals[size_t(nearest)].cast<double>()) < 0;
 }
 
+double ScanOrientation::depth_below(const Eigen::Vector3d& p, Eigen::Vector3d* normal) const {
+  long nearest = index_.nearest(p.cast<float>()).first;
+  if (nearest < 0) return 0.0;
+  const Eigen::Vector3d n = sample_.normals[size_t(nearest)].cast<double>();
+  if (normal) *normal = n;
+  return (sample_.points[size_t(nearest)].cast<double>() - p).dot(n);
+}
+
 namespace {
 
 //! A face's corners when it is a quad.

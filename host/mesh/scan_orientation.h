@@ -45,6 +45,11 @@ class ScanOrientation {
   //! triangles of `faces` (what inward_faces returns).
   double inward_area_fraction(const QuadMesh& mesh, const std::vector<int>& faces) const;
 
+  //! How far `p` lies below the scan: from p to the oriented point nearest
+  //! it, along that point's normal (negative above the scan; 0 where the
+  //! sample is empty). `normal`, when given, receives that point's normal.
+  double depth_below(const Eigen::Vector3d& p, Eigen::Vector3d* normal = nullptr) const;
+
   //! Whether there are no normals to tell inward by.
   bool empty() const { return sample_.empty(); }
 

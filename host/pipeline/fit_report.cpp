@@ -23,6 +23,7 @@ nlohmann::json to_json(const FitReport::Parameters& p) {
           {"curvature_correction", robust && e.curvature_correction},
           {"coarse_to_fine", robust && e.coarse_to_fine},
           {"refine_uncovered", robust && e.refine_uncovered},
+          {"push_deep", robust && e.push_deep},
           {"turned_face_rounds", robust ? e.turned_face_rounds : 0u},
           {"cones", e.cones},
           {"generators", e.generators},
@@ -67,7 +68,9 @@ nlohmann::json to_json(const FitReport::Evolution& e) {
                          {"area_fraction_after", e.turned_faces->area_after},
                          {"rounds", e.turned_faces->rounds},
                          {"settle_iterations", e.turned_faces->settle_iterations},
-                         {"undone_for_crossings", e.turned_faces->undone_for_crossings}};
+                         {"undone_for_crossings", e.turned_faces->undone_for_crossings},
+                         {"deep_push_rounds", e.turned_faces->deep_push_rounds},
+                         {"deep_push_kept", e.turned_faces->deep_push_kept}};
   return j;
 }
 

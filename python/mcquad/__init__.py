@@ -207,6 +207,7 @@ def fit(
     min_facing: float = 0.7,
     curvature_correction: bool = True,
     turned_face_rounds: int = 20,
+    push_deep: bool = True,
     iterations: int = 20,
     tolerance: float = 0.0,
     seed: int = 1,
@@ -268,6 +269,8 @@ def fit(
             vertex, so vertices settle on a curved surface and not inside it.
         turned_face_rounds: robust mode, on a scan with normals: at most this many rounds of smoothing the
             faces turned against the scan's normals after the evolution (0: off).
+        push_deep: robust mode, on a scan with normals, with the smoothing of turned faces: push vertices left
+            deep below the scan out first; the pushed fit is kept where it turns no more area against the scan.
         iterations: maximal number of iterations.
         tolerance: stop when the error level improves by less than this fraction (0: never).
         seed: random seed; the same seed gives the same mesh, bit for bit, as ``mcquad fit --seed``.

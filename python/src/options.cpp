@@ -84,6 +84,7 @@ const FieldTable<FitOptions>& fit_fields() {
       {"local_epsilon", nested(&O::evolution, &E::local_epsilon)},
       {"coarse_to_fine", nested(&O::evolution, &E::coarse_to_fine)},
       {"refine_uncovered", nested(&O::evolution, &E::refine_uncovered)},
+      {"push_deep", nested(&O::evolution, &E::push_deep)},
       {"hit_band", nested(&O::evolution, &E::hit_band)},
       {"facing_cells", nested(&O::evolution, &E::facing_cells)},
       {"min_facing", nested(&O::evolution, &E::min_facing)},
