@@ -261,3 +261,22 @@ def test_turned_faces_are_smoothed_and_reported(tmp_path):
     left_alone = mcquad.fit(cloud, skeleton, backend="serial", turned_face_rounds=0)
     assert "turned_faces" not in left_alone.report["evolution"]
     assert left_alone.report["metrics"]["inward_area_fraction"] > smoothed.report["metrics"]["inward_area_fraction"]
+
+
+def test_deep_vertices_are_pushed_out_across_the_scans_holes(tmp_path):
+    """A T with three holes in its scan: the hole filling leaves the middle of each hole inside;
+    robust mode pushes those vertices out (push_deep), keeps that fit where it turns no more area
+    against the scan, and the report says so; push_deep=False leaves the fit as the evolution made it."""
+    mcquad.generate("t-shape", tmp_path, points=20000, seed=1, holes=3)
+    cloud, skeleton = tmp_path / "t-shape.ply", tmp_path / "t-shape.skeleton.obj"
+    pushed = mcquad.fit(cloud, skeleton, backend="serial")
+    assert pushed.report["parameters"]["push_deep"] is True
+    turned = pushed.report["evolution"]["turned_faces"]
+    assert turned["deep_push_rounds"] > 0
+    assert turned["deep_push_kept"] is True
+    plain = mcquad.fit(cloud, skeleton, backend="serial", push_deep=False)
+    assert plain.report["parameters"]["push_deep"] is False
+    assert plain.report["evolution"]["turned_faces"]["deep_push_rounds"] == 0
+    assert not np.array_equal(pushed.vertices, plain.vertices)
+    inward = pushed.report["metrics"]["inward_area_fraction"], plain.report["metrics"]["inward_area_fraction"]
+    assert inward[0] <= inward[1]
