@@ -61,7 +61,7 @@ TurnedFaceSmoothing smooth_turned_faces(QuadMesh& mesh, const MeshArrays& start,
 
 namespace {
 
-//! `settle.iterations` more evolution steps from the mesh's positions, numbered from `first_iteration`.
+//! kSettleIterations more evolution steps from the mesh's positions, numbered from `first_iteration`.
 void settle_onto_cloud(EvolutionBackend& backend, const MeshArrays& start, const EvolutionParameters& parameters,
                        QuadMesh& mesh, unsigned first_iteration) {
   backend.set_positions(mesh_positions(mesh));

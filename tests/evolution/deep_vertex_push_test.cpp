@@ -11,7 +11,6 @@
 #include "generate/true_surface_distance.h"
 #include "mesh/face_intersections.h"
 #include "mesh/folds.h"
-#include "mesh/quad_shape.h"
 
 namespace mcquad {
 namespace {
