@@ -45,6 +45,13 @@ constexpr double kCycleRadii = 2.0;
 // A ring wider than this many times its limb's median ring is a band that
 // still spans a neighbouring limb, no part of this limb's axis.
 constexpr double kWidestRing = 1.25;
+// Next to a junction of radius r, out to this many r, a straight limb's
+// rings are held to its outer axis (outer_axis_of_straight_limb): those off
+// it by more than kOffOuterAxis of the limb's radius are bands spanning two
+// limbs. A limb is straight when its rings from there on lie within
+// kStraightLimb of its radius of one line (theta's arcs, bent, are not; at
+// 0.15 of its radius the planar star of 7's arm did not count as straight).
+constexpr double kOuterAxisRadii = 3.0, kOffOuterAxis = 0.25, kStraightLimb = 0.25;
 // Pieces whose widest angular gap exceeds this are arcs, not rings.
 constexpr double kArcGap = M_PI / 2;
 
@@ -529,6 +536,32 @@ bool fit_axis(const Extraction& x, const std::vector<int>& nodes, const Eigen::V
   return true;
 }
 
+//! The distance from `p` to `line`.
+double distance_from_line(const Line& line, const Eigen::Vector3d& p) {
+  Eigen::Vector3d d = p - line.point;
+  return (d - d.dot(line.direction) * line.direction).norm();
+}
+
+//! Whether a limb (`nodes`, from its junction at `centre` of radius `r`) is
+//! straight beyond kOuterAxisRadii r: a line fitted to its rings from there
+//! to four radii farther (none wider than `widest`) passes within
+//! kStraightLimb of the limb's radius of every one of them. The line goes to
+//! `axis`.
+bool outer_axis_of_straight_limb(const Extraction& x, const std::vector<int>& nodes, const Eigen::Vector3d& centre,
+                                 double r, double limb_radius, double widest, Line& axis) {
+  const double near = kOuterAxisRadii * r, far = near + 4 * r;
+  if (!(limb_radius > 0) || !std::isfinite(limb_radius) || !fit_axis(x, nodes, centre, near, far, axis, widest))
+    return false;
+  for (int v : nodes) {
+    const Eigen::Vector3d& p = x.position[size_t(v)];
+    const double distance = (p - centre).norm();
+    if (distance >= near && distance <= far && is_ring(x.node(v)) &&
+        distance_from_line(axis, p) > kStraightLimb * limb_radius)
+      return false;
+  }
+  return true;
+}
+
 //! The point nearest all lines in the least-squares sense, pulled weakly
 //! toward `start` (so that nearly parallel limbs do not throw it far).
 Eigen::Vector3d nearest_to_lines(const std::vector<Line>& lines, const Eigen::Vector3d& start) {
@@ -631,10 +664,7 @@ void place_junctions(Extraction& x, std::vector<Chain>& chains) {
   };
   auto farthest_axis = [](const std::vector<Line>& lines, const Eigen::Vector3d& p) {
     double farthest = 0;
-    for (const auto& line : lines) {
-      Eigen::Vector3d d = p - line.point;
-      farthest = std::max(farthest, (d - d.dot(line.direction) * line.direction).norm());
-    }
+    for (const auto& line : lines) farthest = std::max(farthest, distance_from_line(line, p));
     return farthest;
   };
 
@@ -646,10 +676,7 @@ void place_junctions(Extraction& x, std::vector<Chain>& chains) {
     Eigen::Vector3d meet = nearest_to_lines(lines, start);
     if (farthest_axis(lines, meet) < 0.5 * r) return x.inscribed_radius(meet) >= 0.5 * r;
     if (lines.size() < 5) return false;
-    auto distance = [&](const Line& line) {
-      Eigen::Vector3d d = meet - line.point;
-      return (d - d.dot(line.direction) * line.direction).norm();
-    };
+    auto distance = [&](const Line& line) { return distance_from_line(line, meet); };
     auto worst = std::max_element(lines.begin(), lines.end(),
                                   [&](const Line& p, const Line& q) { return distance(p) < distance(q); });
     Line outlier = *worst;
@@ -783,14 +810,24 @@ void place_junctions(Extraction& x, std::vector<Chain>& chains) {
       // apart: its hub node was 0.95 radii off).
       auto off_axis = [&](const Eigen::Vector3d& p) {
         if (!has_axis || limb_radius <= 0 || (p - centre).norm() > 2.5 * r) return false;
-        Eigen::Vector3d d = p - axis.point;
-        return (d - d.dot(axis.direction) * axis.direction).norm() > 0.5 * limb_radius;
+        return distance_from_line(axis, p) > 0.5 * limb_radius;
+      };
+      // And, for a straight limb, rings out to kOuterAxisRadii r off the line
+      // through its rings beyond by more than a quarter of its radius: a band
+      // still spanning two limbs whose shared stretch bent the near axis
+      // toward it (the planar star of 7: a ring 0.5 of the smallest radius
+      // off, between arms 34 degrees apart).
+      Line outer_axis;
+      const bool straight = outer_axis_of_straight_limb(x, limb.nodes, centre, r, limb_radius, widest, outer_axis);
+      auto off_outer_axis = [&](const Eigen::Vector3d& p) {
+        return straight && (p - centre).norm() <= kOuterAxisRadii * r &&
+               distance_from_line(outer_axis, p) > kOffOuterAxis * limb_radius;
       };
       // And rings much wider than the limb: bands spanning it and a
       // neighbour (the rings fit_axis leaves out).
       auto inside = [&](int v) {
         const Eigen::Vector3d& p = x.position[size_t(v)];
-        return (p - centre).dot(out) < 0.75 * r || (p - centre).norm() < 1.5 * r || off_axis(p) ||
+        return (p - centre).dot(out) < 0.75 * r || (p - centre).norm() < 1.5 * r || off_axis(p) || off_outer_axis(p) ||
                x.node(v).radius > widest;
       };
       while (inner + 1 < limb.nodes.size() && inside(limb.nodes[inner])) ++inner;
@@ -813,6 +850,31 @@ void place_junctions(Extraction& x, std::vector<Chain>& chains) {
   chains = std::move(kept);
 }
 
+//! Where a capped limb with no axis of its own ends: the tip is the voxel
+//! near it farthest from the chain's other end `other`, and the end the
+//! first point on the way back from it toward `other` whose inscribed ball
+//! is nearly as wide as any within three radii: the centre of the ball
+//! touching the tip, where the medial axis begins. Sets `axis` (from the
+//! tip, pointing back) and `end` (along -axis.direction) as place_end uses them.
+void medial_end(const Extraction& x, const std::vector<Eigen::Vector3d>& near_tip, const Eigen::Vector3d& other,
+                double r, Line& axis, double& end) {
+  if (near_tip.empty()) return;
+  Eigen::Vector3d tip = near_tip.front();
+  for (const auto& p : near_tip)
+    if ((p - other).squaredNorm() > (tip - other).squaredNorm()) tip = p;
+  Eigen::Vector3d back = other - tip;
+  if (back.norm() <= 0) return;
+  back.normalize();
+  const double step = 0.05 * r, reach = std::min(3 * r, (other - tip).norm());
+  std::vector<double> inscribed;
+  for (double t = 0; t <= reach; t += step) inscribed.push_back(x.inscribed_radius(tip + t * back));
+  const double widest = *std::max_element(inscribed.begin(), inscribed.end());
+  size_t k = 0;
+  while (k + 1 < inscribed.size() && inscribed[k] < 0.95 * widest) ++k;
+  axis = {tip, back};
+  end = -double(k) * step;
+}
+
 //! Moves an end node from the tip's last ring to the axis, one tube radius
 //! in from a capped tip (where a capsule's end sits) or at an open rim.
 void place_end(Extraction& x, std::vector<int>& nodes) {  // nodes start at the end
@@ -829,7 +891,9 @@ void place_end(Extraction& x, std::vector<int>& nodes) {  // nodes start at the 
   // star 18 degrees apart) has too few rings for an axis: the line from its
   // other end to the tip's ring stands in (the ends had stayed at the caps'
   // last rings, up to 1.6 radii past the capsules' ends).
-  if (!fit_axis(x, nodes, tip_ring, r, 3 * r, axis) && !fit_axis(x, nodes, tip_ring, 0.3 * r, 4 * r, axis)) {
+  const bool has_axis =
+      fit_axis(x, nodes, tip_ring, r, 3 * r, axis) || fit_axis(x, nodes, tip_ring, 0.3 * r, 4 * r, axis);
+  if (!has_axis) {
     Eigen::Vector3d inward = x.position[size_t(nodes.back())] - tip_ring;
     if (nodes.size() < 2 || inward.norm() <= 0) return;
     axis = {tip_ring, inward.normalized()};
@@ -853,6 +917,10 @@ void place_end(Extraction& x, std::vector<int>& nodes) {  // nodes start at the 
   }
   bool open = in_slab > 0 && spread / in_slab > 0.75 * r;
   double end = open ? tip : tip - r;
+  if (!has_axis && !open) {
+    medial_end(x, near_tip, x.position[size_t(nodes.back())], r, axis, end);
+    out = -axis.direction;
+  }
   // Drop the rings past (or within half a radius of) the new end.
   size_t keep_from = 1;
   while (keep_from + 1 < nodes.size() && (x.position[size_t(nodes[keep_from])] - axis.point).dot(out) > end - 0.5 * r)
