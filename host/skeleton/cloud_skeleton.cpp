@@ -888,7 +888,8 @@ void medial_end(const Extraction& x, const std::vector<Eigen::Vector3d>& near_ti
 }
 
 //! Moves an end node from the tip's last ring to the axis, one tube radius
-//! in from a capped tip (where a capsule's end sits) or at an open rim.
+//! in from a capped tip (where a capsule's end sits) or at an open rim; a
+//! capped limb with too few rings for an axis ends where medial_end says.
 void place_end(Extraction& x, std::vector<int>& nodes) {  // nodes start at the end
   std::vector<double> radii;
   const Eigen::Vector3d tip_ring = x.position[size_t(nodes.front())];
@@ -902,7 +903,9 @@ void place_end(Extraction& x, std::vector<int>& nodes) {  // nodes start at the 
   // A limb that parts from its neighbour only near its tip (two arms of a
   // star 18 degrees apart) has too few rings for an axis: the line from its
   // other end to the tip's ring stands in (the ends had stayed at the caps'
-  // last rings, up to 1.6 radii past the capsules' ends).
+  // last rings, up to 1.6 radii past the capsules' ends); capped, such a
+  // limb then ends where its medial axis begins (the tip's last piece can
+  // lie to one side of the apex, and the line through it with it).
   const bool has_axis =
       fit_axis(x, nodes, tip_ring, r, 3 * r, axis) || fit_axis(x, nodes, tip_ring, 0.3 * r, 4 * r, axis);
   if (!has_axis) {
