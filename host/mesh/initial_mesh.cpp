@@ -108,7 +108,7 @@ class MeshAssembler {
         } catch (const UnsupportedError& e) {
           throw UnsupportedError(source_ + ": " + node_name(graph_, int(node)) + ": " + e.what());
         }
-        ports = add_junction_block(soup_, center, layout, bones, reach, closed);
+        ports = add_junction_block(soup_, center, layout, bones, reach, closed, options_.block_edges);
       }
       const auto& neighbours = graph_.neighbours[node];
       for (size_t k = 0; k < ports.size(); ++k) {
@@ -574,12 +574,16 @@ InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment&
   InitialMeshOptions used = options;
   CoarseMesh coarse = assemble_coarse_mesh(skeleton, cloud, *cloud_index, used, source, BlockPreference::kFitted);
   // The unrefined mesh (8 vertices round a tube) keeps its blocks at the
-  // start fraction: its faces are too coarse to stand nearer the cloud
-  // (the 60-degree Y's crotch crossed itself, 7 pairs, and a node of the
-  // octopus fell outside its mesh); refined, they are smoothed apart.
-  if (options.stage == ConstructionStage::kRefined && used.block_fraction > used.start_fraction &&
+  // start fraction and their edge vertices midway: its faces are too coarse
+  // to stand nearer the cloud or to turn toward a crotch (the 60-degree Y's
+  // crotch crossed itself, 7 pairs, and a node of the octopus fell outside
+  // its mesh; with the edges on the bisector, 23 pairs); refined, they are
+  // smoothed apart.
+  if (options.stage == ConstructionStage::kRefined &&
+      (used.block_fraction > used.start_fraction || used.block_edges != BlockEdges::kMidway) &&
       refinement_levels(coarse.result.mesh, options) == 0) {
     used.block_fraction = used.start_fraction;
+    used.block_edges = BlockEdges::kMidway;
     coarse = assemble_coarse_mesh(skeleton, cloud, *cloud_index, used, source, BlockPreference::kFitted);
   }
   if (coarse.preference_mattered && options.stage == ConstructionStage::kRefined) {

@@ -6,6 +6,7 @@
 #include "core/point_cloud.h"
 #include "core/point_index.h"
 #include "core/quad_mesh.h"
+#include "mesh/junction_block.h"
 #include "skeleton/acute_junctions.h"
 #include "skeleton/bone_assignment.h"
 #include "skeleton/skeleton_graph.h"
@@ -25,6 +26,10 @@ struct InitialMeshOptions {
   //! a limb that ends or narrows within its blend from the block, and on an
   //! unrefined mesh (MeshAssembler::block_fraction, build_initial_mesh).
   double block_fraction = 0.9;
+  //! Where the general block's edge vertices go (mesh/junction_block.h):
+  //! between two acute bones on their bisector. Midway on an unrefined mesh,
+  //! as its blocks stay at the start fraction (build_initial_mesh).
+  BlockEdges block_edges = BlockEdges::kAcuteOnBisector;
   EndMode ends = EndMode::kAuto;  //!< open/capped ends; auto decides from the cloud
   double resolution = 0;          //!< target edge length; 0 = auto (16 vertices around a tube)
   size_t target_vertices = 0;     //!< alternatively, refine until at least this many vertices

@@ -1,6 +1,7 @@
 #include "mesh/junction_block.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace mcquad {
@@ -17,9 +18,57 @@ double tube_union_reach(const JunctionBones& bones, const Eigen::Vector3d& direc
   return reach;
 }
 
+namespace {
+
+//! The two bones whose faces meet at layout edge `edge`; {-1, -1} where it
+//! borders a filler face or the same bone's face twice.
+std::array<int, 2> bones_beside(const JunctionLayout& layout, size_t edge) {
+  std::array<int, 2> beside{-1, -1};
+  int found = 0;
+  for (size_t bone = 0; bone < layout.bone_edges.size(); ++bone)
+    for (int id : layout.bone_edges[bone])
+      if (size_t(id) == edge && found < 2) beside[size_t(found++)] = int(bone);
+  if (found != 2 || beside[0] == beside[1]) return {-1, -1};
+  return beside;
+}
+
+//! How many layout edges the faces of bones `pair` share.
+int shared_edges(const JunctionLayout& layout, const std::array<int, 2>& pair) {
+  int shared = 0;
+  for (int id : layout.bone_edges[size_t(pair[0])])
+    for (int other : layout.bone_edges[size_t(pair[1])]) shared += id == other;
+  return shared;
+}
+
+}  // namespace
+
+Eigen::Vector3d edge_direction(const JunctionLayout& layout, const JunctionBones& bones, size_t edge,
+                               BlockEdges placement, const std::function<bool(const Eigen::Vector3d&)>& crotch_at) {
+  const auto& e = layout.edges[edge];
+  Eigen::Vector3d midway = layout.corner_directions[size_t(e[0])] + layout.corner_directions[size_t(e[1])];
+  if (placement == BlockEdges::kMidway) return midway;
+  static const double kAcuteCosine = std::cos(kAcuteEdgeDegrees * M_PI / 180.0);
+  const std::array<int, 2> beside = bones_beside(layout, edge);
+  if (beside[0] < 0) return midway;
+  const Eigen::Vector3d& u = bones.directions[size_t(beside[0])];
+  const Eigen::Vector3d& v = bones.directions[size_t(beside[1])];
+  Eigen::Vector3d bisector = (u + v).normalized();
+  if (u.dot(v) <= kAcuteCosine || !crotch_at(bisector)) return midway;
+  if (shared_edges(layout, beside) == 1) return bisector;
+  // Two bones' faces that share two edges (above and below a fork, or a
+  // doubled edge, junction_layout.h) would both land on one point: each
+  // goes from the plane halfway between the bones, where the curve their
+  // tubes meet on lies, kTowardBisector of the way to the bisector.
+  const Eigen::Vector3d across = (u - v).normalized();
+  const Eigen::Vector3d onto = midway - midway.dot(across) * across;
+  if (onto.norm() <= 1e-6 * midway.norm()) return bisector;
+  return (1 - kTowardBisector) * onto.normalized() + kTowardBisector * bisector;
+}
+
 std::vector<Port> add_junction_block(QuadSoup& soup, const Eigen::Vector3d& center, const JunctionLayout& layout,
                                      const JunctionBones& bones,
-                                     const std::function<double(const Eigen::Vector3d&, double)>& reach, bool closed) {
+                                     const std::function<double(const Eigen::Vector3d&, double)>& reach, bool closed,
+                                     BlockEdges edge_placement) {
   auto place = [&](Eigen::Vector3d direction) {
     if (direction.norm() < 1e-9) direction = Eigen::Vector3d::UnitZ();
     direction.normalize();
@@ -28,8 +77,15 @@ std::vector<Port> add_junction_block(QuadSoup& soup, const Eigen::Vector3d& cent
   };
   std::vector<int> corner_vertex, edge_vertex;
   for (const auto& u : layout.corner_directions) corner_vertex.push_back(place(u));
-  for (const auto& e : layout.edges)
-    edge_vertex.push_back(place(layout.corner_directions[size_t(e[0])] + layout.corner_directions[size_t(e[1])]));
+  // The cloud has a crotch where the tubes say (their walls meet within
+  // kCrotchSlack of where the cloud is): not so where the bones leave a fat
+  // body (blob-limbs' legs meet 1.6 out, inside a body 2.5 deep).
+  auto crotch_at = [&](const Eigen::Vector3d& bisector) {
+    const double apex = kCrotchSlack * tube_union_reach(bones, bisector);
+    return reach(bisector, apex) < apex;
+  };
+  for (size_t e = 0; e < layout.edges.size(); ++e)
+    edge_vertex.push_back(place(edge_direction(layout, bones, e, edge_placement, crotch_at)));
 
   // Closed faces in the bones' wide gaps: a fan of quads round a centre each.
   for (size_t f = 0; f < layout.filler_directions.size(); ++f) {

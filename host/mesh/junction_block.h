@@ -21,10 +21,33 @@ struct JunctionBones {
 //! is the farthest. Near a bone, 1 / sin t is capped (at 15 degrees).
 double tube_union_reach(const JunctionBones& bones, const Eigen::Vector3d& direction);
 
+//! Where a block's edge vertices go: midway between their two corners'
+//! directions, or, between the faces of two bones less than
+//! kAcuteEdgeDegrees apart, toward the bones' bisector, where the crotch
+//! between their tubes is (its apex lies r / sin(t/2) out along it). Midway,
+//! an acute pair's edge vertex sits off the crotch and the fit leaves a notch
+//! there whose faces turn inward (docs/CONSTRUCTION.md, section 3, step 5).
+//! Only where the cloud has that crotch: `crotch_at(bisector)` says so.
+enum class BlockEdges { kMidway, kAcuteOnBisector };
+constexpr double kAcuteEdgeDegrees = 75.0;
+//! The cloud's crotch counts as the tubes' where the cloud along the
+//! bisector is nearer than this times where the tubes' walls meet.
+constexpr double kCrotchSlack = 1.2;
+//! Two edges between the same two bones' faces go this far from the plane
+//! halfway between the bones toward their bisector, not both onto it.
+//! Measured on 20 random trees (docs/HARD_CASES.md, "Acute edges toward the
+//! crotch"): 0.5 and 0.8 leave 7 over 0.1 % of their area inward, 0.95
+//! leaves 8; 0.8 turned 0.15 % of the 30-degree fan's bare evolution.
+constexpr double kTowardBisector = 0.5;
+
+//! The direction from the node to layout edge `edge`'s vertex (not unit).
+Eigen::Vector3d edge_direction(const JunctionLayout& layout, const JunctionBones& bones, size_t edge,
+                               BlockEdges placement, const std::function<bool(const Eigen::Vector3d&)>& crotch_at);
+
 //! Adds the junction block laid out by `layout` (junction_layout.h) at
 //! `center`: its corners and the midpoints of its edges (one Catmull-Clark
-//! split) at tube_union_reach, so they sit where neighbouring tubes meet,
-//! but no farther out than `reach(direction, wanted)` (the cloud is not round
+//! split; placed as `edge_placement` says) at tube_union_reach, so they sit
+//! where neighbouring tubes meet, but no farther out than `reach(direction, wanted)` (the cloud is not round
 //! around every junction). Each bone's quad is left open: its 8-vertex ring is
 //! returned as the bone's port, counter-clockwise about the port's outward
 //! direction. With `closed`, the quads are filled instead (four quads round
@@ -32,6 +55,6 @@ double tube_union_reach(const JunctionBones& bones, const Eigen::Vector3d& direc
 std::vector<Port> add_junction_block(QuadSoup& soup, const Eigen::Vector3d& center, const JunctionLayout& layout,
                                      const JunctionBones& bones,
                                      const std::function<double(const Eigen::Vector3d&, double)>& reach,
-                                     bool closed = false);
+                                     bool closed = false, BlockEdges edge_placement = BlockEdges::kMidway);
 
 }  // namespace mcquad

@@ -50,6 +50,7 @@ InitialMeshOptions effective_initial_options(const FitOptions& options) {
   if (!robust) {
     initial.junction_inflation = 0;
     initial.block_fraction = initial.start_fraction;
+    initial.block_edges = BlockEdges::kMidway;
   }
   return initial;
 }

@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <random>
+#include <set>
 
 #include "core/errors.h"
 #include "core/quad_mesh.h"
@@ -86,18 +88,27 @@ std::vector<Junction> junctions() {
 
 class JunctionLayoutCases : public testing::TestWithParam<Junction> {};
 
+void expect_closed_outward_block_facing_every_bone(const Junction& j, BlockEdges placement);
+
 //! The block alone (bones' quads filled) is a closed, outward, all-quad
 //! polyhedron; every bone's quad faces that bone more than any other; at
 //! most max(8, 2 x valence) irregular vertices once tubes are attached.
+//! Both edge placements (junction_block.h) give such a block.
 TEST_P(JunctionLayoutCases, IsAClosedOutwardQuadPolyhedronFacingEveryBone) {
-  const Junction& j = GetParam();
+  for (BlockEdges placement : {BlockEdges::kMidway, BlockEdges::kAcuteOnBisector}) {
+    SCOPED_TRACE(placement == BlockEdges::kMidway ? "edges midway" : "acute edges on their bisector");
+    expect_closed_outward_block_facing_every_bone(GetParam(), placement);
+  }
+}
+
+void expect_closed_outward_block_facing_every_bone(const Junction& j, BlockEdges placement) {
   JunctionLayout layout = layout_junction(j.directions, j.radii);
   const int n = int(j.directions.size());
   EXPECT_LE(layout.irregular_vertices, std::max(8, 2 * n));
   QuadSoup soup;
   JunctionBones bones{j.directions, j.radii};
   auto unlimited = [](const Vec&, double wanted) { return wanted; };
-  std::vector<Port> ports = add_junction_block(soup, Vec::Zero(), layout, bones, unlimited, true);
+  std::vector<Port> ports = add_junction_block(soup, Vec::Zero(), layout, bones, unlimited, true, placement);
   ASSERT_EQ(int(ports.size()), n);
   QuadMesh mesh;
   std::vector<QuadMesh::VertexHandle> handles;
@@ -119,6 +130,48 @@ TEST_P(JunctionLayoutCases, IsAClosedOutwardQuadPolyhedronFacingEveryBone) {
       if (facing.dot(j.directions[size_t(c)]) > facing.dot(j.directions[size_t(nearest)])) nearest = c;
     EXPECT_EQ(nearest, b) << "bone " << b << "'s quad faces bone " << nearest;
   }
+}
+
+//! Between two bones less than kAcuteEdgeDegrees apart, the block's edge
+//! vertices lie on the plane halfway between them, where the curve their
+//! tubes meet on is, nearer the bisector than midway between their corners;
+//! between wider bones, and where the cloud has no crotch, midway.
+TEST(JunctionBlock, AnAcutePairsEdgeVerticesGoToItsCrotch) {
+  const Junction fan = planar("fan", {0, 40, 80, 200});
+  JunctionLayout layout = layout_junction(fan.directions, fan.radii);
+  JunctionBones bones{fan.directions, fan.radii};
+  auto always = [](const Vec&) { return true; };
+  auto never = [](const Vec&) { return false; };
+  std::set<std::pair<size_t, size_t>> acute;
+  int wide = 0;
+  for (size_t e = 0; e < layout.edges.size(); ++e) {
+    std::vector<size_t> beside;
+    for (size_t b = 0; b < layout.bone_edges.size(); ++b)
+      for (int id : layout.bone_edges[b])
+        if (size_t(id) == e) beside.push_back(b);
+    const Vec midway =
+        (layout.corner_directions[size_t(layout.edges[e][0])] + layout.corner_directions[size_t(layout.edges[e][1])])
+            .normalized();
+    auto placed = [&](BlockEdges placement, const std::function<bool(const Vec&)>& crotch) {
+      return edge_direction(layout, bones, e, placement, crotch).normalized();
+    };
+    EXPECT_LT((placed(BlockEdges::kMidway, always) - midway).norm(), 1e-12);
+    EXPECT_LT((placed(BlockEdges::kAcuteOnBisector, never) - midway).norm(), 1e-12);
+    const Vec crotch = placed(BlockEdges::kAcuteOnBisector, always);
+    if (beside.size() == 2 && fan.directions[beside[0]].dot(fan.directions[beside[1]]) > std::cos(75 * M_PI / 180)) {
+      acute.insert({beside[0], beside[1]});
+      const Vec& u = fan.directions[beside[0]];
+      const Vec& v = fan.directions[beside[1]];
+      EXPECT_NEAR(crotch.dot((u - v).normalized()), 0, 1e-12) << "on the halfway plane";
+      EXPECT_GT(crotch.dot((u + v).normalized()), midway.dot((u + v).normalized())) << "nearer the bisector";
+    } else {
+      ++wide;
+      EXPECT_LT((crotch - midway).norm(), 1e-12);
+    }
+  }
+  const std::set<std::pair<size_t, size_t>> pairs{{0, 1}, {1, 2}};  // 0/40 and 40/80 degrees
+  EXPECT_EQ(acute, pairs);
+  EXPECT_GT(wide, 0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Issue20, JunctionLayoutCases, testing::ValuesIn(junctions()),
