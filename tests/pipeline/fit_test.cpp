@@ -65,6 +65,18 @@ TEST(CoarseToFine, ThePapersModeEvolvesOnce) {
   EXPECT_GE(paper.report.initial_mesh.refinement_levels, 2);
 }
 
+//! The paper's mode starts from the paper's blocks: at the start fraction,
+//! edge vertices midway; robust mode grows them and turns acute edges
+//! toward their crotch (docs/CONSTRUCTION.md, section 3).
+TEST(PapersMode, BuildsThePapersJunctionBlocks) {
+  FitOptions options;
+  EXPECT_EQ(effective_initial_options(options).block_edges, BlockEdges::kAcuteOnBisector);
+  EXPECT_GT(effective_initial_options(options).block_fraction, options.initial.start_fraction);
+  options.evolution.mode = EvolutionParameters::Mode::kPaper;
+  EXPECT_EQ(effective_initial_options(options).block_edges, BlockEdges::kMidway);
+  EXPECT_EQ(effective_initial_options(options).block_fraction, options.initial.start_fraction);
+}
+
 //! A robust fit at the default resolution on `kind`, or nothing where
 //! OpenCL has no device (a failure where CI requires one).
 std::optional<FitResult> fit_default(const GeneratedShape& shape, BackendKind kind, bool refine_uncovered) {
