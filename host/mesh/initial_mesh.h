@@ -27,8 +27,9 @@ struct InitialMeshOptions {
   //! unrefined mesh (MeshAssembler::block_fraction, build_initial_mesh).
   double block_fraction = 0.9;
   //! Where the general block's edge vertices go (mesh/junction_block.h):
-  //! between two acute bones on their bisector. Midway on an unrefined mesh,
-  //! as its blocks stay at the start fraction (build_initial_mesh).
+  //! between two acute bones toward their crotch, where the cloud has one.
+  //! Midway on an unrefined mesh, whose blocks stay at the start fraction
+  //! too (build_initial_mesh), and in the paper's mode.
   BlockEdges block_edges = BlockEdges::kAcuteOnBisector;
   EndMode ends = EndMode::kAuto;  //!< open/capped ends; auto decides from the cloud
   double resolution = 0;          //!< target edge length; 0 = auto (16 vertices around a tube)

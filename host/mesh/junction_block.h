@@ -47,11 +47,12 @@ Eigen::Vector3d edge_direction(const JunctionLayout& layout, const JunctionBones
 //! Adds the junction block laid out by `layout` (junction_layout.h) at
 //! `center`: its corners and the midpoints of its edges (one Catmull-Clark
 //! split; placed as `edge_placement` says) at tube_union_reach, so they sit
-//! where neighbouring tubes meet, but no farther out than `reach(direction, wanted)` (the cloud is not round
-//! around every junction). Each bone's quad is left open: its 8-vertex ring is
-//! returned as the bone's port, counter-clockwise about the port's outward
-//! direction. With `closed`, the quads are filled instead (four quads round
-//! a centre vertex each), so the block alone is a closed polyhedron.
+//! where neighbouring tubes meet, but no farther out than
+//! `reach(direction, wanted)` (the cloud is not round around every
+//! junction). Each bone's quad is left open: its 8-vertex ring is returned
+//! as the bone's port, counter-clockwise about the port's outward direction.
+//! With `closed`, the quads are filled instead (four quads round a centre
+//! vertex each), so the block alone is a closed polyhedron.
 std::vector<Port> add_junction_block(QuadSoup& soup, const Eigen::Vector3d& center, const JunctionLayout& layout,
                                      const JunctionBones& bones,
                                      const std::function<double(const Eigen::Vector3d&, double)>& reach,
