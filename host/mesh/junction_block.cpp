@@ -78,8 +78,9 @@ std::vector<Port> add_junction_block(QuadSoup& soup, const Eigen::Vector3d& cent
   std::vector<int> corner_vertex, edge_vertex;
   for (const auto& u : layout.corner_directions) corner_vertex.push_back(place(u));
   // The cloud has a crotch where the tubes say (their walls meet within
-  // kCrotchSlack of where the cloud is): not so where the bones leave a fat
-  // body (blob-limbs' legs meet 1.6 out, inside a body 2.5 deep).
+  // kCrotchSlack of where the cloud is). Not so where a fork stands past
+  // where its limbs' walls part and its bisector looks down the gap between
+  // them (blob-limbs' legs: the vertices went 1.7 out, into the gap).
   auto crotch_at = [&](const Eigen::Vector3d& bisector) {
     const double apex = kCrotchSlack * tube_union_reach(bones, bisector);
     return reach(bisector, apex) < apex;
