@@ -30,7 +30,7 @@ struct InitialMeshOptions {
   //! between two acute bones toward their crotch, where the cloud has one.
   //! Midway on an unrefined mesh, whose blocks stay at the start fraction
   //! too (build_initial_mesh), and in the paper's mode.
-  BlockEdges block_edges = BlockEdges::kAcuteOnBisector;
+  BlockEdges block_edges = BlockEdges::kAcuteToCrotch;
   EndMode ends = EndMode::kAuto;  //!< open/capped ends; auto decides from the cloud
   double resolution = 0;          //!< target edge length; 0 = auto (16 vertices around a tube)
   size_t target_vertices = 0;     //!< alternatively, refine until at least this many vertices

@@ -32,6 +32,12 @@ std::array<int, 2> bones_beside(const JunctionLayout& layout, size_t edge) {
   return beside;
 }
 
+//! Two bones less than kAcuteEdgeDegrees apart (unit directions).
+bool acute(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+  static const double kAcuteCosine = std::cos(kAcuteEdgeDegrees * M_PI / 180.0);
+  return u.dot(v) > kAcuteCosine;
+}
+
 //! How many layout edges the faces of bones `pair` share.
 int shared_edges(const JunctionLayout& layout, const std::array<int, 2>& pair) {
   int shared = 0;
@@ -42,27 +48,63 @@ int shared_edges(const JunctionLayout& layout, const std::array<int, 2>& pair) {
 
 }  // namespace
 
+Eigen::Vector3d corner_direction(const JunctionLayout& layout, const JunctionBones& bones, size_t corner,
+                                 BlockEdges placement, const CrotchFinder& crotch_between) {
+  const Eigen::Vector3d& laid_out = layout.corner_directions[corner];
+  if (placement == BlockEdges::kMidway) return laid_out;
+  // Only a corner between exactly two bones' faces (a doubled edge's
+  // two-sided face, junction_layout.h) stands where their crease is.
+  for (const auto& filler : layout.filler_corners)
+    if (std::find(filler.begin(), filler.end(), int(corner)) != filler.end()) return laid_out;
+  std::vector<size_t> beside;
+  for (size_t bone = 0; bone < layout.bone_corners.size(); ++bone)
+    for (int id : layout.bone_corners[bone])
+      if (size_t(id) == corner) beside.push_back(bone);
+  if (beside.size() != 2 || beside[0] == beside[1]) return laid_out;
+  const Eigen::Vector3d& u = bones.directions[beside[0]];
+  const Eigen::Vector3d& v = bones.directions[beside[1]];
+  if (!acute(u, v)) return laid_out;
+  return crotch_between(u, v).value_or(laid_out);
+}
+
+Eigen::Vector3d nearest_on_arc(const Eigen::Vector3d& u, const Eigen::Vector3d& v,
+                               const std::function<double(const Eigen::Vector3d&)>& distance) {
+  const double angle = std::acos(std::clamp(u.dot(v), -1.0, 1.0));
+  const Eigen::Vector3d across = (v - u.dot(v) * u).normalized();  // v's part off u
+  Eigen::Vector3d best = (u + v).normalized();                     // wins ties
+  double least = distance(best);
+  for (int k = kCrotchSamples / 4; k <= 3 * kCrotchSamples / 4; ++k) {
+    if (2 * k == kCrotchSamples) continue;  // the bisector
+    const double t = angle * double(k) / double(kCrotchSamples);
+    const Eigen::Vector3d d = std::cos(t) * u + std::sin(t) * across;
+    const double along = distance(d);
+    if (along < least) least = along, best = d;
+  }
+  return best;
+}
+
 Eigen::Vector3d edge_direction(const JunctionLayout& layout, const JunctionBones& bones, size_t edge,
-                               BlockEdges placement, const std::function<bool(const Eigen::Vector3d&)>& crotch_at) {
+                               BlockEdges placement, const CrotchFinder& crotch_between) {
   const auto& e = layout.edges[edge];
   Eigen::Vector3d midway = layout.corner_directions[size_t(e[0])] + layout.corner_directions[size_t(e[1])];
   if (placement == BlockEdges::kMidway) return midway;
-  static const double kAcuteCosine = std::cos(kAcuteEdgeDegrees * M_PI / 180.0);
   const std::array<int, 2> beside = bones_beside(layout, edge);
   if (beside[0] < 0) return midway;
   const Eigen::Vector3d& u = bones.directions[size_t(beside[0])];
   const Eigen::Vector3d& v = bones.directions[size_t(beside[1])];
-  Eigen::Vector3d bisector = (u + v).normalized();
-  if (u.dot(v) <= kAcuteCosine || !crotch_at(bisector)) return midway;
-  if (shared_edges(layout, beside) == 1) return bisector;
+  if (!acute(u, v)) return midway;
+  const std::optional<Eigen::Vector3d> crotch = crotch_between(u, v);
+  if (!crotch) return midway;
+  if (shared_edges(layout, beside) == 1) return *crotch;
   // Two bones' faces that share two edges (above and below a fork, or a
   // doubled edge, junction_layout.h) would both land on one point: each
-  // goes from the plane halfway between the bones, where the curve their
-  // tubes meet on lies, kTowardBisector of the way to the bisector.
-  const Eigen::Vector3d across = (u - v).normalized();
+  // goes from the plane through the crotch square to the bones' plane (the
+  // plane halfway between them, where the curve their tubes meet on lies,
+  // for tubes alike), kTowardCrotch of the way to the crotch.
+  const Eigen::Vector3d across = crotch->cross(u.cross(v)).normalized();
   const Eigen::Vector3d onto = midway - midway.dot(across) * across;
-  if (onto.norm() <= 1e-6 * midway.norm()) return bisector;
-  return (1 - kTowardBisector) * onto.normalized() + kTowardBisector * bisector;
+  if (onto.norm() <= 1e-6 * midway.norm()) return *crotch;
+  return (1 - kTowardCrotch) * onto.normalized() + kTowardCrotch * *crotch;
 }
 
 std::vector<Port> add_junction_block(QuadSoup& soup, const Eigen::Vector3d& center, const JunctionLayout& layout,
@@ -76,17 +118,25 @@ std::vector<Port> add_junction_block(QuadSoup& soup, const Eigen::Vector3d& cent
     return soup.add_vertex(center + std::min(wanted, reach(direction, wanted)) * direction, true);
   };
   std::vector<int> corner_vertex, edge_vertex;
-  for (const auto& u : layout.corner_directions) corner_vertex.push_back(place(u));
-  // The cloud has a crotch where the tubes say (their walls meet within
-  // kCrotchSlack of where the cloud is). Not so where a fork stands past
-  // where its limbs' walls part and its bisector looks down the gap between
-  // them (blob-limbs' legs: the vertices went 1.7 out, into the gap).
-  auto crotch_at = [&](const Eigen::Vector3d& bisector) {
-    const double apex = kCrotchSlack * tube_union_reach(bones, bisector);
-    return reach(bisector, apex) < apex;
+  // The cloud's crotch between two bones: the direction on the arc between
+  // them along which the cloud is nearest (the apex, where the ray leaves
+  // the two tubes' union soonest; with unequal radii or a bone that bends
+  // past the node it is off the bisector). It counts where the cloud there
+  // is nearer than kCrotchSlack times where the tubes' walls would meet. Not
+  // so where a fork stands past where its limbs' walls part and the arc
+  // looks down the gap between them (blob-limbs' legs: the vertices went 1.7
+  // out, into the gap).
+  auto crotch_between = [&](const Eigen::Vector3d& u, const Eigen::Vector3d& v) -> std::optional<Eigen::Vector3d> {
+    auto apex = [&](const Eigen::Vector3d& d) { return kCrotchSlack * tube_union_reach(bones, d); };
+    const double enough = kCrotchSearch * apex((u + v).normalized());
+    const Eigen::Vector3d crotch = nearest_on_arc(u, v, [&](const Eigen::Vector3d& d) { return reach(d, enough); });
+    if (reach(crotch, apex(crotch)) < apex(crotch)) return crotch;
+    return std::nullopt;
   };
+  for (size_t c = 0; c < layout.corner_directions.size(); ++c)
+    corner_vertex.push_back(place(corner_direction(layout, bones, c, edge_placement, crotch_between)));
   for (size_t e = 0; e < layout.edges.size(); ++e)
-    edge_vertex.push_back(place(edge_direction(layout, bones, e, edge_placement, crotch_at)));
+    edge_vertex.push_back(place(edge_direction(layout, bones, e, edge_placement, crotch_between)));
 
   // Closed faces in the bones' wide gaps: a fan of quads round a centre each.
   for (size_t f = 0; f < layout.filler_directions.size(); ++f) {

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "mesh/junction_layout.h"
@@ -21,29 +22,56 @@ struct JunctionBones {
 //! is the farthest. Near a bone, 1 / sin t is capped (at 15 degrees).
 double tube_union_reach(const JunctionBones& bones, const Eigen::Vector3d& direction);
 
-//! Where a block's edge vertices go: midway between their two corners'
-//! directions, or, between the faces of two bones less than
-//! kAcuteEdgeDegrees apart, toward the bones' bisector, where the crotch
-//! between their tubes is (its apex lies r / sin(t/2) out along it). Midway,
-//! an acute pair's edge vertex sits off the crotch and the fit leaves a notch
-//! there whose faces turn inward (docs/CONSTRUCTION.md, section 3, step 5).
-//! Only where the cloud has that crotch: `crotch_at(bisector)` says so.
-enum class BlockEdges { kMidway, kAcuteOnBisector };
+//! Where a block's edge vertices and two-bone corners go: as laid out
+//! (edges midway between their two corners' directions), or, between the
+//! faces of two bones less than kAcuteEdgeDegrees apart, toward the crotch
+//! between their tubes. Midway, an acute pair's edge vertex sits off the
+//! crotch and the fit leaves a notch there whose faces turn inward
+//! (docs/CONSTRUCTION.md, section 3, step 5). The crotch is where the cloud
+//! has it: on the arc between the bones, the direction along which the cloud
+//! is nearest (nearest_on_arc); only where that is nearer than kCrotchSlack
+//! times where the tubes' walls meet.
+enum class BlockEdges { kMidway, kAcuteToCrotch };
 constexpr double kAcuteEdgeDegrees = 75.0;
-//! The cloud's crotch counts as the tubes' where the cloud along the
-//! bisector is nearer than this times where the tubes' walls meet (1.05 to
-//! 2.0 measured alike on the random trees and blob-limbs).
+//! The cloud's crotch counts as the tubes' where the cloud along it is
+//! nearer than this times where the tubes' walls meet (1.05 to 2.0 measured
+//! alike on the random trees and blob-limbs).
 constexpr double kCrotchSlack = 1.2;
+//! The search for the crotch looks this many times farther than where the
+//! tubes' walls meet on the bisector.
+constexpr double kCrotchSearch = 3.0;
 //! Two edges between the same two bones' faces go this far from the plane
-//! halfway between the bones toward their bisector, not both onto it.
-//! Measured on 20 random trees (docs/HARD_CASES.md, "Acute edges toward the
-//! crotch"): 0.5 and 0.8 leave 7 over 0.1 % of their area inward, 0.95
-//! leaves 8; 0.8 turned 0.15 % of the 30-degree fan's bare evolution.
-constexpr double kTowardBisector = 0.5;
+//! through the crotch square to the bones' plane toward the crotch, not
+//! both onto it. Measured on 20 random trees with the crotch on the
+//! bisector (docs/HARD_CASES.md, "Acute edges toward the crotch"): 0.5 and
+//! 0.8 leave 7 over 0.1 % of their area inward, 0.95 leaves 8; 0.8 turned
+//! 0.15 % of the 30-degree fan's bare evolution.
+constexpr double kTowardCrotch = 0.5;
+
+//! Where the cloud's crotch between bones `u` and `v` (unit) lies seen
+//! from the node, or none where the cloud has no crotch there.
+using CrotchFinder = std::function<std::optional<Eigen::Vector3d>(const Eigen::Vector3d& u, const Eigen::Vector3d& v)>;
+
+//! Directions on the arc between two bones: the search for their crotch
+//! takes the middle half of them (nearer a bone a ray runs along its tube's
+//! wall, or out of a thin branch's wall beside it).
+constexpr int kCrotchSamples = 16;
+
+//! The direction on the arc from `u` to `v` (unit, less than 180 degrees
+//! apart) where `distance` is least, among the middle half of
+//! kCrotchSamples + 1 evenly spaced ones; the bisector on a tie.
+Eigen::Vector3d nearest_on_arc(const Eigen::Vector3d& u, const Eigen::Vector3d& v,
+                               const std::function<double(const Eigen::Vector3d&)>& distance);
+
+//! The direction from the node to layout corner `corner`'s vertex: where it
+//! lies between exactly two bones' faces (a doubled edge's two-sided face,
+//! junction_layout.h), an acute pair's crotch as `placement` says.
+Eigen::Vector3d corner_direction(const JunctionLayout& layout, const JunctionBones& bones, size_t corner,
+                                 BlockEdges placement, const CrotchFinder& crotch_between);
 
 //! The direction from the node to layout edge `edge`'s vertex (not unit).
 Eigen::Vector3d edge_direction(const JunctionLayout& layout, const JunctionBones& bones, size_t edge,
-                               BlockEdges placement, const std::function<bool(const Eigen::Vector3d&)>& crotch_at);
+                               BlockEdges placement, const CrotchFinder& crotch_between);
 
 //! Adds the junction block laid out by `layout` (junction_layout.h) at
 //! `center`: its corners and the midpoints of its edges (one Catmull-Clark

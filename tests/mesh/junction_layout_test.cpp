@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <functional>
 #include <random>
 #include <set>
@@ -88,27 +89,40 @@ std::vector<Junction> junctions() {
 
 class JunctionLayoutCases : public testing::TestWithParam<Junction> {};
 
-void expect_closed_outward_block_facing_every_bone(const Junction& j, BlockEdges placement);
+using Reach = std::function<double(const Vec&, double)>;
+void expect_closed_outward_block_facing_every_bone(const Junction& j, BlockEdges placement, const Reach& reach);
 
 //! The block alone (bones' quads filled) is a closed, outward, all-quad
 //! polyhedron; every bone's quad faces that bone more than any other; at
 //! most max(8, 2 x valence) irregular vertices once tubes are attached.
-//! Both edge placements (junction_block.h) give such a block.
+//! Both placements (junction_block.h) give such a block: with no crotch in
+//! the cloud, and with the crotches of a cloud that is the union of the
+//! bones' tubes with radii other than the block's (so crotches lie off the
+//! bisectors, where the search on the arc finds them).
 TEST_P(JunctionLayoutCases, IsAClosedOutwardQuadPolyhedronFacingEveryBone) {
-  for (BlockEdges placement : {BlockEdges::kMidway, BlockEdges::kAcuteOnBisector}) {
-    SCOPED_TRACE(placement == BlockEdges::kMidway ? "edges midway" : "acute edges on their bisector");
-    expect_closed_outward_block_facing_every_bone(GetParam(), placement);
+  const Junction& j = GetParam();
+  JunctionBones other_radii{j.directions, j.radii};
+  for (size_t b = 0; b < j.radii.size(); ++b) other_radii.tube_radii[b] *= b % 3 ? 0.7 : 1.3;
+  const Reach no_crotch = [](const Vec&, double wanted) { return wanted; };
+  const Reach tubes = [&](const Vec& d, double wanted) { return std::min(wanted, tube_union_reach(other_radii, d)); };
+  expect_closed_outward_block_facing_every_bone(j, BlockEdges::kMidway, no_crotch);
+  {
+    SCOPED_TRACE("acute pairs toward their crotch, none in the cloud");
+    expect_closed_outward_block_facing_every_bone(j, BlockEdges::kAcuteToCrotch, no_crotch);
+  }
+  {
+    SCOPED_TRACE("acute pairs toward their crotch in a cloud of tubes");
+    expect_closed_outward_block_facing_every_bone(j, BlockEdges::kAcuteToCrotch, tubes);
   }
 }
 
-void expect_closed_outward_block_facing_every_bone(const Junction& j, BlockEdges placement) {
+void expect_closed_outward_block_facing_every_bone(const Junction& j, BlockEdges placement, const Reach& reach) {
   JunctionLayout layout = layout_junction(j.directions, j.radii);
   const int n = int(j.directions.size());
   EXPECT_LE(layout.irregular_vertices, std::max(8, 2 * n));
   QuadSoup soup;
   JunctionBones bones{j.directions, j.radii};
-  auto unlimited = [](const Vec&, double wanted) { return wanted; };
-  std::vector<Port> ports = add_junction_block(soup, Vec::Zero(), layout, bones, unlimited, true, placement);
+  std::vector<Port> ports = add_junction_block(soup, Vec::Zero(), layout, bones, reach, true, placement);
   ASSERT_EQ(int(ports.size()), n);
   QuadMesh mesh;
   std::vector<QuadMesh::VertexHandle> handles;
@@ -140,8 +154,8 @@ TEST(JunctionBlock, AnAcutePairsEdgeVerticesGoToItsCrotch) {
   const Junction fan = planar("fan", {0, 40, 80, 200});
   JunctionLayout layout = layout_junction(fan.directions, fan.radii);
   JunctionBones bones{fan.directions, fan.radii};
-  auto always = [](const Vec&) { return true; };
-  auto never = [](const Vec&) { return false; };
+  auto always = [](const Vec& u, const Vec& v) -> std::optional<Vec> { return (u + v).normalized(); };
+  auto never = [](const Vec&, const Vec&) -> std::optional<Vec> { return std::nullopt; };
   std::set<std::pair<size_t, size_t>> acute;
   int wide = 0;
   for (size_t e = 0; e < layout.edges.size(); ++e) {
@@ -152,12 +166,12 @@ TEST(JunctionBlock, AnAcutePairsEdgeVerticesGoToItsCrotch) {
     const Vec midway =
         (layout.corner_directions[size_t(layout.edges[e][0])] + layout.corner_directions[size_t(layout.edges[e][1])])
             .normalized();
-    auto placed = [&](BlockEdges placement, const std::function<bool(const Vec&)>& crotch) {
+    auto placed = [&](BlockEdges placement, const CrotchFinder& crotch) {
       return edge_direction(layout, bones, e, placement, crotch).normalized();
     };
     EXPECT_LT((placed(BlockEdges::kMidway, always) - midway).norm(), 1e-12);
-    EXPECT_LT((placed(BlockEdges::kAcuteOnBisector, never) - midway).norm(), 1e-12);
-    const Vec crotch = placed(BlockEdges::kAcuteOnBisector, always);
+    EXPECT_LT((placed(BlockEdges::kAcuteToCrotch, never) - midway).norm(), 1e-12);
+    const Vec crotch = placed(BlockEdges::kAcuteToCrotch, always);
     if (beside.size() == 2 && fan.directions[beside[0]].dot(fan.directions[beside[1]]) > std::cos(75 * M_PI / 180)) {
       acute.insert({beside[0], beside[1]});
       const Vec& u = fan.directions[beside[0]];
@@ -172,6 +186,44 @@ TEST(JunctionBlock, AnAcutePairsEdgeVerticesGoToItsCrotch) {
   const std::set<std::pair<size_t, size_t>> pairs{{0, 1}, {1, 2}};  // 0/40 and 40/80 degrees
   EXPECT_EQ(acute, pairs);
   EXPECT_GT(wide, 0);
+  // A corner between exactly two acute bones' faces goes onto their crotch;
+  // every other corner stays as laid out.
+  int moved = 0;
+  for (size_t c = 0; c < layout.corner_directions.size(); ++c) {
+    std::vector<size_t> beside;
+    for (size_t b = 0; b < layout.bone_corners.size(); ++b)
+      for (int id : layout.bone_corners[b])
+        if (size_t(id) == c) beside.push_back(b);
+    bool in_filler = false;
+    for (const auto& filler : layout.filler_corners)
+      in_filler = in_filler || std::count(filler.begin(), filler.end(), int(c)) > 0;
+    const Vec placed = corner_direction(layout, bones, c, BlockEdges::kAcuteToCrotch, always);
+    EXPECT_EQ(corner_direction(layout, bones, c, BlockEdges::kAcuteToCrotch, never), layout.corner_directions[c]);
+    if (beside.size() == 2 && !in_filler && acute.count({beside[0], beside[1]})) {
+      ++moved;
+      EXPECT_LT((placed - (fan.directions[beside[0]] + fan.directions[beside[1]]).normalized()).norm(), 1e-12);
+    } else {
+      EXPECT_EQ(placed, layout.corner_directions[c]);
+    }
+  }
+  EXPECT_GT(moved, 0) << "the planar fan's acute pairs share a doubled edge's corner";
+}
+
+//! The crotch between two tubes of unequal radii lies off their bisector,
+//! toward the thinner one: where a ray from the node leaves their union
+//! soonest. Between equal tubes it is the bisector.
+TEST(JunctionBlock, TheCrotchOnTheArcLeansToTheThinnerTube) {
+  const Vec u = Vec::UnitX(), v = Vec(std::cos(M_PI / 3), std::sin(M_PI / 3), 0);
+  const JunctionBones unequal{{u, v}, {1.0, 0.5}}, equal{{u, v}, {0.7, 0.7}};
+  auto leaving = [](const JunctionBones& bones) {
+    return [&bones](const Vec& d) { return tube_union_reach(bones, d); };
+  };
+  const Vec bisector = (u + v).normalized();
+  const Vec crotch = nearest_on_arc(u, v, leaving(unequal));
+  EXPECT_GT(crotch.dot(v), bisector.dot(v)) << "toward the thinner tube";
+  EXPECT_LT(tube_union_reach(unequal, crotch), tube_union_reach(unequal, bisector));
+  EXPECT_NEAR(crotch.z(), 0, 1e-12) << "on the arc";
+  EXPECT_LT((nearest_on_arc(u, v, leaving(equal)) - bisector).norm(), 1e-12);
 }
 
 INSTANTIATE_TEST_SUITE_P(Issue20, JunctionLayoutCases, testing::ValuesIn(junctions()),

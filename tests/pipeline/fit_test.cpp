@@ -70,7 +70,7 @@ TEST(CoarseToFine, ThePapersModeEvolvesOnce) {
 //! toward their crotch (docs/CONSTRUCTION.md, section 3).
 TEST(PapersMode, BuildsThePapersJunctionBlocks) {
   FitOptions options;
-  EXPECT_EQ(effective_initial_options(options).block_edges, BlockEdges::kAcuteOnBisector);
+  EXPECT_EQ(effective_initial_options(options).block_edges, BlockEdges::kAcuteToCrotch);
   EXPECT_GT(effective_initial_options(options).block_fraction, options.initial.start_fraction);
   options.evolution.mode = EvolutionParameters::Mode::kPaper;
   EXPECT_EQ(effective_initial_options(options).block_edges, BlockEdges::kMidway);
