@@ -146,6 +146,15 @@ void expect_closed_outward_block_facing_every_bone(const Junction& j, BlockEdges
   }
 }
 
+//! The bones whose quads have layout edge or corner `id` (per bone, its 4).
+std::vector<size_t> bones_with(const std::vector<std::array<int, 4>>& per_bone, size_t id) {
+  std::vector<size_t> bones;
+  for (size_t b = 0; b < per_bone.size(); ++b)
+    for (int own : per_bone[b])
+      if (size_t(own) == id) bones.push_back(b);
+  return bones;
+}
+
 //! Between two bones less than kAcuteEdgeDegrees apart, the block's edge
 //! vertices lie on the plane halfway between them, where the curve their
 //! tubes meet on is, nearer the bisector than midway between their corners;
@@ -159,10 +168,7 @@ TEST(JunctionBlock, AnAcutePairsEdgeVerticesGoToItsCrotch) {
   std::set<std::pair<size_t, size_t>> acute;
   int wide = 0;
   for (size_t e = 0; e < layout.edges.size(); ++e) {
-    std::vector<size_t> beside;
-    for (size_t b = 0; b < layout.bone_edges.size(); ++b)
-      for (int id : layout.bone_edges[b])
-        if (size_t(id) == e) beside.push_back(b);
+    const std::vector<size_t> beside = bones_with(layout.bone_edges, e);
     const Vec midway =
         (layout.corner_directions[size_t(layout.edges[e][0])] + layout.corner_directions[size_t(layout.edges[e][1])])
             .normalized();
@@ -190,10 +196,7 @@ TEST(JunctionBlock, AnAcutePairsEdgeVerticesGoToItsCrotch) {
   // every other corner stays as laid out.
   int moved = 0;
   for (size_t c = 0; c < layout.corner_directions.size(); ++c) {
-    std::vector<size_t> beside;
-    for (size_t b = 0; b < layout.bone_corners.size(); ++b)
-      for (int id : layout.bone_corners[b])
-        if (size_t(id) == c) beside.push_back(b);
+    const std::vector<size_t> beside = bones_with(layout.bone_corners, c);
     bool in_filler = false;
     for (const auto& filler : layout.filler_corners)
       in_filler = in_filler || std::count(filler.begin(), filler.end(), int(c)) > 0;
