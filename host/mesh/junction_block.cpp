@@ -71,8 +71,8 @@ Eigen::Vector3d nearest_on_arc(const Eigen::Vector3d& u, const Eigen::Vector3d& 
                                const std::function<double(const Eigen::Vector3d&)>& distance) {
   const double angle = std::acos(std::clamp(u.dot(v), -1.0, 1.0));
   const Eigen::Vector3d across = (v - u.dot(v) * u).normalized();  // v's part off u
-  Eigen::Vector3d best = (u + v).normalized();                     // wins ties
-  double least = distance(best);
+  Eigen::Vector3d best = (u + v).normalized();                     // kept unless clearly farther
+  double least = kCrotchLean * distance(best);
   for (int k = kCrotchSamples / 4; k <= 3 * kCrotchSamples / 4; ++k) {
     if (2 * k == kCrotchSamples) continue;  // the bisector
     const double t = angle * double(k) / double(kCrotchSamples);

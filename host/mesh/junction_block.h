@@ -57,9 +57,19 @@ using CrotchFinder = std::function<std::optional<Eigen::Vector3d>(const Eigen::V
 //! wall, or out of a thin branch's wall beside it).
 constexpr int kCrotchSamples = 16;
 
+//! A direction on the arc is the crotch instead of the bisector only where
+//! the cloud along it is nearer by more than this factor. Round a round body
+//! (the octopus's mantle) the cloud is as near along every direction, within
+//! 0.3 %, and the search followed that noise to crotches up to 9.5 degrees
+//! off the bisector, and a face of a flap in them; 2 % is about a sample
+//! spacing of the probe there (docs/HARD_CASES.md, "The crotch searched in
+//! the cloud").
+constexpr double kCrotchLean = 0.98;
+
 //! The direction on the arc from `u` to `v` (unit, less than 180 degrees
 //! apart) where `distance` is least, among the middle half of
-//! kCrotchSamples + 1 evenly spaced ones; the bisector on a tie.
+//! kCrotchSamples + 1 evenly spaced ones; the bisector unless that one is
+//! nearer than kCrotchLean times the bisector's distance.
 Eigen::Vector3d nearest_on_arc(const Eigen::Vector3d& u, const Eigen::Vector3d& v,
                                const std::function<double(const Eigen::Vector3d&)>& distance);
 
