@@ -58,12 +58,13 @@ using CrotchFinder = std::function<std::optional<Eigen::Vector3d>(const Eigen::V
 constexpr int kCrotchSamples = 16;
 
 //! A direction on the arc is the crotch instead of the bisector only where
-//! the cloud along it is nearer by more than this factor. Round a round body
-//! (the octopus's mantle) the cloud is as near along every direction, within
-//! 0.3 %, and the search followed that noise to crotches up to 9.5 degrees
-//! off the bisector, and a face of a flap in them; 2 % is about a sample
-//! spacing of the probe there (docs/HARD_CASES.md, "The crotch searched in
-//! the cloud").
+//! the cloud along it is nearer than this times the bisector's distance.
+//! Around a round body (the octopus's mantle) the cloud is as near along
+//! every direction, within 0.3 %; without this the search followed that
+//! noise to crotches up to 9.5 degrees off the bisector, and the octopus
+//! turned 0.34 % of its area inward instead of 0.24 %. 2 % is about a
+//! sample spacing of the probe there (docs/HARD_CASES.md, "The crotch
+//! searched in the cloud").
 constexpr double kCrotchLean = 0.98;
 
 //! The direction on the arc from `u` to `v` (unit, less than 180 degrees

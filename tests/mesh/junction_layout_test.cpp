@@ -214,7 +214,7 @@ TEST(JunctionBlock, AnAcutePairsEdgeVerticesGoToItsCrotch) {
 
 //! The crotch between two tubes of unequal radii lies off their bisector,
 //! toward the thinner one: where a ray from the node leaves their union
-//! soonest. Between equal tubes, and round a round body, it is the bisector.
+//! soonest. Between equal tubes, and around a round body, it is the bisector.
 TEST(JunctionBlock, TheCrotchOnTheArcLeansToTheThinnerTube) {
   const Vec u = Vec::UnitX(), v = Vec(std::cos(M_PI / 3), std::sin(M_PI / 3), 0);
   const JunctionBones unequal{{u, v}, {1.0, 0.5}}, equal{{u, v}, {0.7, 0.7}};
@@ -227,7 +227,7 @@ TEST(JunctionBlock, TheCrotchOnTheArcLeansToTheThinnerTube) {
   EXPECT_LT(tube_union_reach(unequal, crotch), tube_union_reach(unequal, bisector));
   EXPECT_NEAR(crotch.z(), 0, 1e-12) << "on the arc";
   EXPECT_LT((nearest_on_arc(u, v, leaving(equal)) - bisector).norm(), 1e-12);
-  // Round a round body the cloud is as near along every direction, but for
+  // Around a round body the cloud is as near along every direction, but for
   // noise under kCrotchLean: the bisector stays.
   auto round_body = [&](const Vec& d) { return 1.0 + 0.5 * (1 - kCrotchLean) * d.dot(u); };
   EXPECT_LT((nearest_on_arc(u, v, round_body) - bisector).norm(), 1e-12);
