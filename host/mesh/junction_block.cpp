@@ -20,14 +20,15 @@ double tube_union_reach(const JunctionBones& bones, const Eigen::Vector3d& direc
 
 namespace {
 
-//! The two bones whose faces meet at layout edge `edge`; {-1, -1} where it
-//! borders a filler face or the same bone's face twice.
-std::array<int, 2> bones_beside(const JunctionLayout& layout, size_t edge) {
+//! The two bones whose quads have layout edge or corner `id` (`per_bone`:
+//! each bone's 4); {-1, -1} unless exactly two distinct bones do (an edge
+//! bordering a filler face, a corner where three bones' quads meet).
+std::array<int, 2> two_bones_with(const std::vector<std::array<int, 4>>& per_bone, size_t id) {
   std::array<int, 2> beside{-1, -1};
   int found = 0;
-  for (size_t bone = 0; bone < layout.bone_edges.size(); ++bone)
-    for (int id : layout.bone_edges[bone])
-      if (size_t(id) == edge && found < 2) beside[size_t(found++)] = int(bone);
+  for (size_t bone = 0; bone < per_bone.size(); ++bone)
+    for (int own : per_bone[bone])
+      if (size_t(own) == id && found++ < 2) beside[size_t(found - 1)] = int(bone);
   if (found != 2 || beside[0] == beside[1]) return {-1, -1};
   return beside;
 }
@@ -56,13 +57,10 @@ Eigen::Vector3d corner_direction(const JunctionLayout& layout, const JunctionBon
   // two-sided face, junction_layout.h) stands where their crease is.
   for (const auto& filler : layout.filler_corners)
     if (std::find(filler.begin(), filler.end(), int(corner)) != filler.end()) return laid_out;
-  std::vector<size_t> beside;
-  for (size_t bone = 0; bone < layout.bone_corners.size(); ++bone)
-    for (int id : layout.bone_corners[bone])
-      if (size_t(id) == corner) beside.push_back(bone);
-  if (beside.size() != 2 || beside[0] == beside[1]) return laid_out;
-  const Eigen::Vector3d& u = bones.directions[beside[0]];
-  const Eigen::Vector3d& v = bones.directions[beside[1]];
+  const std::array<int, 2> beside = two_bones_with(layout.bone_corners, corner);
+  if (beside[0] < 0) return laid_out;
+  const Eigen::Vector3d& u = bones.directions[size_t(beside[0])];
+  const Eigen::Vector3d& v = bones.directions[size_t(beside[1])];
   if (!acute(u, v)) return laid_out;
   return crotch_between(u, v).value_or(laid_out);
 }
@@ -88,7 +86,7 @@ Eigen::Vector3d edge_direction(const JunctionLayout& layout, const JunctionBones
   const auto& e = layout.edges[edge];
   Eigen::Vector3d midway = layout.corner_directions[size_t(e[0])] + layout.corner_directions[size_t(e[1])];
   if (placement == BlockEdges::kMidway) return midway;
-  const std::array<int, 2> beside = bones_beside(layout, edge);
+  const std::array<int, 2> beside = two_bones_with(layout.bone_edges, edge);
   if (beside[0] < 0) return midway;
   const Eigen::Vector3d& u = bones.directions[size_t(beside[0])];
   const Eigen::Vector3d& v = bones.directions[size_t(beside[1])];

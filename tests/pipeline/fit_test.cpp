@@ -162,9 +162,10 @@ TEST_P(CoverageRefinement, KeepsTheDefaultFitWhereRefiningCannotHelp) {
 //! The planar star of 8 at 20,000 points: one level finer covers the cloud
 //! (the verdict's figure 0.063 -> 0.026 of the median radius) but turns
 //! more of its area against the scan's normals, a check the default fit
-//! already fails. (At 30,000 points, its case until the blocks' crotches
-//! were searched in the cloud, the finer fit now turns less.) The default fit is the result, the same mesh as without
-//! the refinement, and the report says why.
+//! already fails. The default fit is the result, the same mesh as without
+//! the refinement, and the report says why. (At 30,000 points, its case
+//! until the blocks' crotches were searched in the cloud, the finer fit now
+//! turns less.)
 TEST_P(CoverageRefinement, KeepsTheDefaultFitWhereTheRefinedOneIsWorseElsewhere) {
   ShapeOptions star;
   star.arms = 8;
