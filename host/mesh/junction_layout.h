@@ -33,7 +33,10 @@ struct JunctionLayout {
   std::vector<Eigen::Vector3d> filler_directions;
   std::vector<std::vector<int>> filler_corners, filler_edges;
   int irregular_vertices = 0;  //!< once split, with tubes attached
-  double score = 0;            //!< the search's cost: lower faces the bones better
+  //! The most quads round one of its vertices once split, with the tubes
+  //! attached: a corner's, or a filler's centre's.
+  int highest_valence = 0;
+  double score = 0;  //!< the search's cost: lower faces the bones better
 };
 
 //! Lays out the block for bones leaving the node in `directions` (unit) with
@@ -47,7 +50,10 @@ struct JunctionLayout {
 //! enclose a two-sided face, whose dual corner is a regular vertex of the
 //! block), and a dropped edge merges its two triangles into one face. Of all
 //! such choices an exhaustive search keeps the one whose quads face their
-//! bones best: corners evenly spread around each bone, at even angles from it.
+//! bones best: corners evenly spread around each bone, at even angles from it,
+//! and few vertices of other than 4 quads, the fewer the further from 4.
+//! Where that leaves a vertex of more than 8 quads, fillers in narrower gaps
+//! may part it (junction_layout.cpp, kNarrowGap).
 //! UnsupportedError when no choice exists (not seen on any tested shape).
 JunctionLayout layout_junction(const std::vector<Eigen::Vector3d>& directions, const std::vector<double>& radii);
 

@@ -137,15 +137,24 @@ INSTANTIATE_TEST_SUITE_P(Shapes, InitialMeshProperties,
                                          ShapeCase{"planar-star", with_arms(5), 30000, 0.02}),
                          case_name);
 
+//! The most quads round one vertex: a junction block's corner where all
+//! the octopus's arms met had 16, with corners of 22.5 degrees.
+size_t most_quads_round_a_vertex(const QuadMesh& mesh) {
+  size_t most = 0;
+  for (auto v : mesh.vertices()) most = std::max(most, size_t(std::distance(mesh.cvf_begin(v), mesh.cvf_end(v))));
+  return most;
+}
+
 class JunctionTopology : public testing::TestWithParam<ShapeCase> {};
 
 //! Junctions of any valence and direction (issue 20): at two resolutions
 //! the initial mesh is all quads, 2-manifold, outward, with the skeleton's
 //! Euler characteristic and boundary loops, and irregular vertices only on
 //! blocks and caps, at most max(8, 2 x valence) a junction and 4 a cap, as
-//! many at both levels. Refined (at the default resolution and finer), no
-//! faces cross: the skew 9's pinched crease beside its block went with its
-//! moved forks (acute_junctions.h keeps forks out of other arms' tubes).
+//! many at both levels, no vertex of more than 8 quads. Refined (at the
+//! default resolution and finer), no faces cross: the skew 9's pinched
+//! crease beside its block went with its moved forks (acute_junctions.h
+//! keeps forks out of other arms' tubes).
 //! What JunctionTopology checks but the quads' shape; returns the mesh at
 //! the default resolution.
 InitialMesh expect_junction_topology(const ShapeCase& c, const ShapeUnderTest& t) {
@@ -158,6 +167,7 @@ InitialMesh expect_junction_topology(const ShapeCase& c, const ShapeUnderTest& t
       if (degree == 1) budget += 4;
     }
     EXPECT_LE(s.irregular_vertices, budget);
+    EXPECT_LE(most_quads_round_a_vertex(initial.mesh), 8u);
     if (initial.refinement_levels >= 1) {
       EXPECT_EQ(intersecting_face_pairs(initial.mesh).size(), 0u)
           << "refined " << initial.refinement_levels << " times";

@@ -120,6 +120,12 @@ void expect_closed_outward_block_facing_every_bone(const Junction& j, BlockEdges
   JunctionLayout layout = layout_junction(j.directions, j.radii);
   const int n = int(j.directions.size());
   EXPECT_LE(layout.irregular_vertices, std::max(8, 2 * n));
+  // No vertex of more than 8 quads once the tubes are attached (the
+  // octopus's arms met in one corner of 16), but on three junctions kept as
+  // found: 12 bones in a plane (9: the poles' fillers take 8 bones at
+  // most), random 8 bones of seed 13 (9) and 9 of seed 22 (10).
+  const bool kept_as_found = j.name == "planar12" || j.name == "random8_13" || j.name == "random9_22";
+  EXPECT_LE(layout.highest_valence, kept_as_found ? 10 : 8) << "a vertex of more quads, once the tubes are attached";
   QuadSoup soup;
   JunctionBones bones{j.directions, j.radii};
   std::vector<Port> ports = add_junction_block(soup, Vec::Zero(), layout, bones, reach, true, placement);
