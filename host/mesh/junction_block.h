@@ -27,7 +27,7 @@ double tube_union_reach(const JunctionBones& bones, const Eigen::Vector3d& direc
 //! faces of two bones less than kAcuteEdgeDegrees apart, toward the crotch
 //! between their tubes. Midway, an acute pair's edge vertex sits off the
 //! crotch and the fit leaves a notch there whose faces turn inward
-//! (docs/CONSTRUCTION.md, section 3, step 5). The crotch is where the cloud
+//! (docs/CONSTRUCTION.md, section 3, step 6). The crotch is where the cloud
 //! has it: on the arc between the bones, the direction along which the cloud
 //! is nearest (nearest_on_arc); only where that is nearer than kCrotchSlack
 //! times where the tubes' walls meet.

@@ -118,7 +118,7 @@ constexpr double kWideGap = 80.0 * M_PI / 180.0;
 // gaps down to kNarrowGap get fillers too, and the least crowded block wins.
 // The octopus's eight arms, 20 degrees below its mantle's equator, all met
 // in one corner: 16 quads, corners of 22.5 degrees. The fit's steps moved
-// it 0.2-0.3 toward the cloud 0.7 below, and the crossing guard held every
+// it 0.14-0.30 toward the cloud 0.7 below, and the crossing guard held every
 // one back: the fitted mesh kept a spike there. Its fillers (the 70-degree
 // cap under the arms, four of 55-65 degrees between mantle and arms) part
 // the arms. Only there: tried
