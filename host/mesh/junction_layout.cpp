@@ -121,9 +121,9 @@ constexpr double kWideGap = 80.0 * M_PI / 180.0;
 // it 0.14-0.30 toward the cloud 0.7 below, and the crossing guard held every
 // one back: the fitted mesh kept a spike there. Its fillers (the 70-degree
 // cap under the arms, four of 55-65 degrees between mantle and arms) part
-// the arms. Only there: tried
-// everywhere, they crowded random trees' junctions of 5 and 6 with small
-// faces (tree 2's true-surface p95 4.75 -> 38.7 % r, docs/HARD_CASES.md).
+// the arms. Only there: tried everywhere, they crowded random trees'
+// junctions of 5 and 6 with small faces (tree 2's true-surface p95 4.75 ->
+// 38.7 % r, docs/HARD_CASES.md, "Crowded block corners parted").
 constexpr double kNarrowGap = 55.0 * M_PI / 180.0;
 constexpr int kMostQuadsRoundAVertex = 8;
 
@@ -328,12 +328,12 @@ class LayoutSearch {
     // After one split and the tubes, a corner has as many edges as faces
     // round it plus one per tube: regular only at 4.
     for (const auto& [c, count] : corner_faces) {
-      if (count + corner_ports[c] != 4) ++irregular;
-      irregularity += valence_cost(count + corner_ports[c]);
+      const int valence = count + corner_ports[c];
+      if (valence != 4) ++irregular;
+      irregularity += valence_cost(valence);
+      layout.highest_valence = std::max(layout.highest_valence, valence);
     }
     layout.irregular_vertices = irregular;
-    for (const auto& [c, count] : corner_faces)
-      layout.highest_valence = std::max(layout.highest_valence, count + corner_ports[c]);
     total += kIrregularWeight * irregularity + kOverBudgetWeight * std::max(0, irregular - irregular_budget());
     double score = total + worst;
     layout.score = score;
