@@ -475,12 +475,11 @@ JunctionLayout layout_junction(const std::vector<Vec>& directions, const std::ve
   consider(wide);
   if (wide.size() > n) consider(directions);
   auto by_score = [](const JunctionLayout& a, const JunctionLayout& b) { return a.score < b.score; };
-  if (layouts.empty() || least(by_score)->highest_valence > kMostQuadsRoundAVertex) {
-    std::vector<Vec> narrow = with_fillers(directions, kNarrowGap);
-    if (narrow.size() > wide.size()) consider(narrow);
-    if (!layouts.empty()) return *least(less_crowded);
-  }
-  if (!layouts.empty()) return *least(by_score);
+  const auto best = least(by_score);
+  if (best != layouts.end() && best->highest_valence <= kMostQuadsRoundAVertex) return *best;
+  std::vector<Vec> narrow = with_fillers(directions, kNarrowGap);
+  if (narrow.size() > wide.size()) consider(narrow);
+  if (!layouts.empty()) return *least(less_crowded);
   throw UnsupportedError("no junction block fits its " + std::to_string(n) + " bones' directions");
 }
 
