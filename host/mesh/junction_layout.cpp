@@ -375,7 +375,18 @@ class LayoutSearch {
   //! Counted one each, the octopus's corner of 16 quads under its mantle
   //! cost what a corner of 5 does; weighted so, the double junction's blocks
   //! changed and its fit turned less (inward area 0.14 -> 0.09 %).
-  static double valence_cost(int valence) { return double((valence - 4) * (valence - 4)); }
+  //! A vertex of 2 quads is a doublet: the two share two edges, and each
+  //! has a corner of about 180 degrees there, whatever the fit does. Costing
+  //! what a vertex of 6 quads does, doublets were in the blocks of 9 of the
+  //! first 20 random trees (random tree 7's two: filler faces between two
+  //! corners only, their centres the doublets), and the fits refined from
+  //! them one level finer went down to -0.995 (docs/HARD_CASES.md,
+  //! "Doublets"). Weighted so (30 in the score, where a quarter turn's
+  //! error squared is 2.5), a layout keeps one only where nothing else is near.
+  static double valence_cost(int valence) {
+    if (valence < 3) return kDoubletCost;
+    return double((valence - 4) * (valence - 4));
+  }
 
   // Bounds on the search (the best choice found so far is kept): exhaustive
   // for the shapes tested up to valence 8, at most about 0.3 s a junction.
@@ -385,6 +396,7 @@ class LayoutSearch {
   // vertex weighs about a 10-degree error in one corner, one over the
   // budget (issue 20: max(8, 2 x valence) a junction) more than any shape.
   static constexpr double kIrregularWeight = 0.03;
+  static constexpr double kDoubletCost = 1000.0;
   static constexpr double kOverBudgetWeight = 20.0;
 
   const std::vector<Vec>& d_;
