@@ -72,9 +72,8 @@ InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment&
 //! Coarse to fine: a mesh already evolved at the default resolution refined
 //! `levels` more times, each level's folds and crossings relaxed as the
 //! initial mesh's are, then its poor quads (mesh/quad_relaxation.h). The
-//! refined mesh has the topology the initial mesh
-//! would have had at that resolution, and starts on the cloud instead of
-//! inside it.
+//! refined mesh has the topology the initial mesh would have had at that
+//! resolution, and starts on the cloud instead of inside it.
 void refine_fitted_mesh(QuadMesh& mesh, int levels);
 
 }  // namespace mcquad

@@ -240,6 +240,13 @@ class LayoutSearch {
     std::map<int, int> corner_faces, corner_ports;
     int irregular = 0;
     double irregularity = 0;
+    // A block vertex of `valence` quads once the tubes are attached: the
+    // irregular ones counted and costed, the most crowded kept.
+    auto tally = [&](int valence) {
+      if (valence != 4) ++irregular;
+      irregularity += valence_cost(valence);
+      layout.highest_valence = std::max(layout.highest_valence, valence);
+    };
     std::map<int, int> corner_of_key;
     std::map<int, Vec> direction_sum;
     for (size_t f = 0; f < facets_.size(); ++f) {
@@ -312,9 +319,7 @@ class LayoutSearch {
         layout.filler_directions.push_back(d_[size_t(v)]);
         layout.filler_corners.push_back(slot_face);
         layout.filler_edges.push_back(edges_between);
-        if (k_count != 4) ++irregular;
-        irregularity += valence_cost(int(k_count));
-        layout.highest_valence = std::max(layout.highest_valence, int(k_count));
+        tally(int(k_count));
         continue;
       }
       for (size_t k = 0; k < 4; ++k) {
@@ -327,12 +332,7 @@ class LayoutSearch {
     }
     // After one split and the tubes, a corner has as many edges as faces
     // round it plus one per tube: regular only at 4.
-    for (const auto& [c, count] : corner_faces) {
-      const int valence = count + corner_ports[c];
-      if (valence != 4) ++irregular;
-      irregularity += valence_cost(valence);
-      layout.highest_valence = std::max(layout.highest_valence, valence);
-    }
+    for (const auto& [c, count] : corner_faces) tally(count + corner_ports[c]);
     layout.irregular_vertices = irregular;
     total += kIrregularWeight * irregularity + kOverBudgetWeight * std::max(0, irregular - irregular_budget());
     double score = total + worst;

@@ -155,7 +155,7 @@ size_t most_quads_round_a_vertex(const QuadMesh& mesh) {
 size_t fewest_quads_round_an_inner_vertex(const QuadMesh& mesh) {
   size_t fewest = std::numeric_limits<size_t>::max();
   for (auto v : mesh.vertices())
-    if (!mesh.is_boundary(v)) fewest = std::min(fewest, size_t(std::distance(mesh.cvf_begin(v), mesh.cvf_end(v))));
+    if (!mesh.is_boundary(v)) fewest = std::min(fewest, size_t(mesh.valence(v)));  // as many quads as edges
   return fewest;
 }
 
