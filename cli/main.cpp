@@ -149,6 +149,9 @@ struct FitCommand {
                     "robust mode: a cell's distance along a ray from its samples: mean, or min (the paper's)");
     add_word_option(app, "--fill-holes", e.fill_holes, on_off_words(),
                     "robust mode: vertices that find no cell take their neighbours' offset (on, off)");
+    add_word_option(app, "--nearest-plane", e.nearest_plane, on_off_words(),
+                    "robust mode: vertices that find no cell with the cloud within epsilon move along the scan's "
+                    "normal at their nearest point to its level (on, off)");
     add_word_option(
         app, "--crossing-guard", e.crossing_guard, on_off_words(),
         "robust mode: shorten moves that make faces cross or fold, turn over or lose shape, after each step (on, off)");

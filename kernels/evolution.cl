@@ -10,13 +10,15 @@ __kernel void evolve_vertices(
     __global const float* initial_normals, __global float* new_positions, __global const uint* faces,
     __global const uint* vertex_face_offsets, __global const uint* vertex_faces, __global const uint* boundary,
     __global const float* node_bounds, __global const int* node_children, __global const uint* cell_offsets,
-    __global const float* points, __global const float* cell_facing, __global const uint* cell_bones,
+    __global const float* points, __global const float* cell_centroids, __global const float* cell_normals,
+    __global const float* cell_facing, const float bounds_inset, __global const uint* cell_bones,
     __global const uint* vertex_bones, __global const float* vertex_scale, __global const uint* visible_offsets,
     __global const uint* visible_bones, const mcq_step_params params, const uint vertex_count) {
   uint v = get_global_id(0);
   if (v >= vertex_count) return;
   mcq_topology mesh = {faces, vertex_face_offsets, vertex_faces, boundary};
-  mcq_cells cells = {node_bounds, node_children, cell_offsets, points, 0, 0, cell_facing, 0.0f}; /* no planes */
+  mcq_cells cells = {node_bounds,    node_children, cell_offsets, points,
+                     cell_centroids, cell_normals,  cell_facing,  bounds_inset};
   mcq_regions regions = {cell_bones, vertex_bones, vertex_scale, visible_offsets, visible_bones};
   uint feasible;
   mcq_store3(new_positions, v,

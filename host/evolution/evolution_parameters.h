@@ -28,6 +28,13 @@ struct EvolutionParameters {
   bool mean_projection = true;
   //! Robust mode: vertices in holes of the scan take their neighbours' offset.
   bool fill_holes = true;
+  //! Robust mode: a vertex whose rays find no feasible cell while the cloud
+  //! is within epsilon of it (a slit in a crease, not a hole) moves along
+  //! the scan's normal at its nearest point to that point's level
+  //! (mcq_nearest_plane_position). Off by default: closer fits everywhere,
+  //! but more faces turned on some shapes and scans (docs/DESIGN.md,
+  //! "Blind vertices").
+  bool nearest_plane = false;
   //! Robust mode: moves that make faces cross are undone after each step
   //! (mesh/crossing_guard.h).
   bool crossing_guard = true;

@@ -11,7 +11,7 @@ namespace mcquad {
 
 // The step parameters cross to the device as one kernel argument: 4-byte
 // fields only, so the layout is the same on both sides.
-static_assert(sizeof(device::mcq_step_params) == 18 * 4, "mcq_step_params must stay 4-byte fields");
+static_assert(sizeof(device::mcq_step_params) == 19 * 4, "mcq_step_params must stay 4-byte fields");
 
 device::mcq_step_params make_step_params(const EvolutionParameters& parameters, unsigned iteration) {
   device::mcq_step_params params;
@@ -36,6 +36,7 @@ device::mcq_step_params make_step_params(const EvolutionParameters& parameters, 
   params.facing_cells = robust && parameters.facing_cells ? 1u : 0u;
   params.min_facing = float(parameters.min_facing);
   params.curvature_correction = robust && parameters.curvature_correction ? 1u : 0u;
+  params.nearest_plane = robust && parameters.nearest_plane ? 1u : 0u;
   return params;
 }
 

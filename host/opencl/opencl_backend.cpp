@@ -117,8 +117,8 @@ void OpenCLBackend::step(const device::mcq_step_params& params) {
     }
     set_kernel_args(evolve_kernel_, positions_, normals_, initial_positions_, initial_normals_, next_positions_, faces_,
                     vertex_face_offsets_, vertex_faces_, boundary_, node_bounds_, node_children_, cell_offsets_,
-                    points_, cell_facing_, cell_bones_, vertex_bones_, vertex_scale_, visible_offsets_, visible_bones_,
-                    params, vertex_count_);
+                    points_, cell_centroids_, cell_normals_, cell_facing_, bounds_inset_, cell_bones_, vertex_bones_,
+                    vertex_scale_, visible_offsets_, visible_bones_, params, vertex_count_);
     queue_.enqueueNDRangeKernel(evolve_kernel_, cl::NullRange, global_range(vertex_count_, kGroupSize),
                                 cl::NDRange(kGroupSize));
     swap(positions_, next_positions_);

@@ -13,6 +13,7 @@ nlohmann::json to_json(const FitReport::Parameters& p) {
           {"relaxation", e.relaxation},
           {"projection", word_of(robust && e.mean_projection, projection_words())},
           {"fill_holes", robust && e.fill_holes},
+          {"nearest_plane", robust && e.nearest_plane},
           {"crossing_guard", robust && e.crossing_guard},
           {"held_back_relaxation", robust && e.crossing_guard ? e.held_back_relaxation : 0.0},
           {"own_cells", robust && e.own_cells},

@@ -395,8 +395,9 @@ MCQ_FN void mcq_nearest_in_cell(const MCQ_GLOBAL mcq_uint* cell_offsets, const M
   }
 }
 
-/* The cell holding the cloud point nearest to q (ties to the lower point
- * index, i.e. the lower cell); the squared distance goes to *distance2.
+/* The cloud point nearest to q (ties to the lower point index, i.e. the
+ * lower cell), 0xFFFFFFFF in an empty tree; its cell goes to *cell and the
+ * squared distance to *distance2.
  * `inset`: how far inside every box its points lie at least (the rays'
  * padding, 0 for tight boxes); the search prunes on the boxes shrunk by it,
  * which on the knot visits a third of the leaves the padded boxes do.
@@ -404,9 +405,9 @@ MCQ_FN void mcq_nearest_in_cell(const MCQ_GLOBAL mcq_uint* cell_offsets, const M
  * vertex stood one step before: its points bound the search from the start,
  * so far fewer boxes pass. The answer is the same with any guess: no box
  * that holds a point at least as near as the best so far is pruned. */
-MCQ_FN int mcq_nearest_point_cell(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
+MCQ_FN mcq_uint mcq_nearest_point(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
                                   const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points, float inset,
-                                  mcq_vec3 q, int start_cell, float* distance2) {
+                                  mcq_vec3 q, int start_cell, float* distance2, int* cell) {
   int stack_node[MCQ_STACK_SIZE];
   float stack_d[MCQ_STACK_SIZE];
   int top = 1;
@@ -442,7 +443,18 @@ MCQ_FN int mcq_nearest_point_cell(const MCQ_GLOBAL float* node_bounds, const MCQ
     }
   }
   *distance2 = best_d;
-  return best_cell;
+  *cell = best_cell;
+  return best_point;
+}
+
+/* The cell holding the cloud point nearest to q (mcq_nearest_point), -1 in
+ * an empty tree. */
+MCQ_FN int mcq_nearest_point_cell(const MCQ_GLOBAL float* node_bounds, const MCQ_GLOBAL int* node_children,
+                                  const MCQ_GLOBAL mcq_uint* cell_offsets, const MCQ_GLOBAL float* points, float inset,
+                                  mcq_vec3 q, int start_cell, float* distance2) {
+  int cell;
+  mcq_nearest_point(node_bounds, node_children, cell_offsets, points, inset, q, start_cell, distance2, &cell);
+  return cell;
 }
 
 #endif

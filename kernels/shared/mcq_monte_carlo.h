@@ -25,6 +25,8 @@ typedef struct {
   mcq_uint facing_cells; /* 1: rays pass through cells whose scan normals face away from the vertex's normal */
   float min_facing;      /* with facing_cells, the least dot(cell facing, vertex normal) of a cell a ray may hit */
   mcq_uint curvature_correction; /* 1: each sample's projection is corrected by the mesh's curvature at the vertex */
+  mcq_uint nearest_plane;        /* 1: a vertex no ray finds a feasible cell for, with the cloud within epsilon,
+                                    moves along the scan's normal at its nearest cloud point to that point's level */
 } mcq_step_params;
 
 /* Robust mode's skeleton regions, as laid out by host/cells/skeleton_regions.h. */
@@ -420,11 +422,48 @@ MCQ_FN mcq_vec3 mcq_hole_position(const MCQ_GLOBAL float* positions, const MCQ_G
   return mcq_add(mcq_load3(initial_positions, vertex), mcq_scale(mcq_load3(initial_normals, vertex), sum / count));
 }
 
-/* One vertex's new position: the paper's move along the normal, or in a
- * hole (no feasible ray, params.fill_holes) the neighbours' offset; either
- * shortened by the fold guard when the step asks for it. An open end's rim
- * counts: its rays that leave the tube past the cloud's cut find nothing,
- * and a rim left where the initial mesh put it stays a notch 0.3 r deep. */
+/* Robust mode's blind vertices: where no ray of a vertex finds a feasible
+ * cell but the cloud is within epsilon of it, the scan has no hole there;
+ * the vertex's cone misses the cloud. That happens in a slit the mesh
+ * leaves in a concave crease, whose walls face each other while the
+ * cloud's crease lies up the slit, beside their cones (docs/DESIGN.md).
+ * Such a vertex moves onto the tangent plane at its nearest cloud point,
+ * along that plane's normal: up the slit to the crease's level, and at the
+ * rim of a hole onto the surface beside it. The normal is the scan's over
+ * the point's cell (cell_facing), else the cell's least-squares plane's
+ * where it holds at least 4 points: about a quarter of the cells hold one
+ * point and have no plane. Returns 1 and sets *target when the nearest point is
+ * within epsilon, its cell belongs to a bone the vertex may see and has a
+ * normal; 0 otherwise (a hole, or no normal known there). */
+MCQ_FN int mcq_nearest_plane_position(mcq_cells cells, mcq_regions regions, mcq_uint vertex, mcq_vec3 q,
+                                      mcq_step_params params, mcq_vec3* target) {
+  float scale = params.local_epsilon ? regions.vertex_scale[vertex] : 1.0f;
+  float epsilon = params.epsilon * scale, d2;
+  int cell;
+  mcq_uint point = mcq_nearest_point(cells.node_bounds, cells.node_children, cells.cell_offsets, cells.points,
+                                     cells.bounds_inset, q, -1, &d2, &cell);
+  if (cell < 0 || !(d2 < epsilon * epsilon)) return 0;
+  mcq_step_params bones_only = params;
+  bones_only.facing_cells = 0u;
+  mcq_vec3 unused_normal = mcq_make_vec3(0.0f, 0.0f, 0.0f); /* the facing test is off */
+  if (!mcq_cell_is_visible(mcq_vertex_cell_filter(regions, cells.cell_facing, vertex, unused_normal, bones_only), cell))
+    return 0;
+  mcq_vec3 t = mcq_load3(cells.cell_facing, (mcq_uint)cell);
+  if (mcq_dot(t, t) == 0.0f) {
+    if (cells.cell_offsets[cell + 1] - cells.cell_offsets[cell] < 4u) return 0;
+    t = mcq_load3(cells.cell_normals, (mcq_uint)cell);
+  }
+  *target = mcq_add(q, mcq_scale(t, mcq_dot(t, mcq_sub(mcq_load3(cells.points, point), q))));
+  return 1;
+}
+
+/* One vertex's new position: the paper's move along the normal; with no
+ * feasible ray, the tangent plane at its nearest cloud point where the
+ * cloud is within epsilon (params.nearest_plane), else, in a hole
+ * (params.fill_holes), the neighbours' offset; any of them shortened by the
+ * fold guard when the step asks for it. An open end's rim counts: its rays
+ * that leave the tube past the cloud's cut find nothing, and a rim left
+ * where the initial mesh put it stays a notch 0.3 r deep. */
 MCQ_FN mcq_vec3 mcq_evolve_vertex(const MCQ_GLOBAL float* positions, const MCQ_GLOBAL float* normals,
                                   const MCQ_GLOBAL float* initial_positions, const MCQ_GLOBAL float* initial_normals,
                                   mcq_topology mesh, mcq_cells cells, mcq_regions regions, mcq_uint vertex,
@@ -436,11 +475,13 @@ MCQ_FN mcq_vec3 mcq_evolve_vertex(const MCQ_GLOBAL float* positions, const MCQ_G
     shape = mcq_vertex_shape_operator(positions, mesh.faces, mesh.vertex_face_offsets, mesh.vertex_faces, vertex, q, n);
   float delta = mcq_vertex_displacement(cells, regions, q, n, shape, vertex, params, feasible);
   mcq_vec3 target = mcq_add(q, mcq_scale(n, delta));
-  int in_hole = *feasible == 0u && params.fill_holes;
+  int blind =
+      *feasible == 0u && params.nearest_plane && mcq_nearest_plane_position(cells, regions, vertex, q, params, &target);
+  int in_hole = *feasible == 0u && params.fill_holes && !blind;
   if (in_hole)
     target = mcq_hole_position(positions, initial_positions, initial_normals, mesh.faces, mesh.vertex_face_offsets,
                                mesh.vertex_faces, vertex);
-  if (params.fold_guard && (delta != 0.0f || in_hole))
+  if (params.fold_guard && (delta != 0.0f || in_hole || blind))
     target =
         mcq_add(q, mcq_scale(mcq_sub(target, q), mcq_fold_safe_fraction(positions, mesh.faces, mesh.vertex_face_offsets,
                                                                         mesh.vertex_faces, vertex, q, target)));

@@ -196,6 +196,7 @@ def fit(
     relaxation: float = 0.0,
     projection: str = "mean",
     fill_holes: bool = True,
+    nearest_plane: bool = False,
     crossing_guard: bool = True,
     held_back_relaxation: float = 0.6,
     own_cells: bool = True,
@@ -252,6 +253,8 @@ def fit(
         relaxation: robust mode: tangential relaxation weight before each step (0 to 1; 0: off).
         projection: robust mode: a cell's distance along a ray from its samples, ``mean`` or ``min`` (the paper's).
         fill_holes: robust mode: vertices that find no cell take their neighbours' offset.
+        nearest_plane: robust mode: vertices that find no cell while the cloud is within epsilon move along the
+            scan's normal at their nearest point to its level (off by default; docs/DESIGN.md, "Blind vertices").
         crossing_guard: robust mode: shorten moves that make faces cross or fold after each step.
         held_back_relaxation: robust mode: relaxation weight for the vertices the guard held back (0 to 1).
         own_cells: robust mode: a vertex sees only the cells of the bones near its own.

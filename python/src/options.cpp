@@ -78,6 +78,7 @@ const FieldTable<FitOptions>& fit_fields() {
       {"projection",
        word<O, bool>([](O& o) -> bool& { return o.evolution.mean_projection; }, projection_words, "projection")},
       {"fill_holes", nested(&O::evolution, &E::fill_holes)},
+      {"nearest_plane", nested(&O::evolution, &E::nearest_plane)},
       {"crossing_guard", nested(&O::evolution, &E::crossing_guard)},
       {"held_back_relaxation", nested(&O::evolution, &E::held_back_relaxation)},
       {"own_cells", nested(&O::evolution, &E::own_cells)},

@@ -55,13 +55,16 @@ TEST(Cli, GenerateInitFitMetricsEndToEnd) {
   EXPECT_EQ(json["backend"]["name"], "serial");
   EXPECT_EQ(json["parameters"]["projection"], "mean");  // robust mode's defaults
   EXPECT_EQ(json["parameters"]["fill_holes"], true);
-  CliRun paper_like = mcquad("fit " + points + " " + skeleton + " -o " + dir.file("p.obj") + " --report " +
-                             dir.file("p.json") + " --backend serial --iterations 1 --projection min --fill-holes off");
+  EXPECT_EQ(json["parameters"]["nearest_plane"], false);  // opt-in (docs/DESIGN.md, "Blind vertices")
+  CliRun paper_like =
+      mcquad("fit " + points + " " + skeleton + " -o " + dir.file("p.obj") + " --report " + dir.file("p.json") +
+             " --backend serial --iterations 1 --projection min --fill-holes off --nearest-plane on");
   ASSERT_EQ(paper_like.code, 0) << paper_like.output;
   std::ifstream paper_report(dir.file("p.json"));
   auto paper_json = nlohmann::json::parse(paper_report);
   EXPECT_EQ(paper_json["parameters"]["projection"], "min");
   EXPECT_EQ(paper_json["parameters"]["fill_holes"], false);
+  EXPECT_EQ(paper_json["parameters"]["nearest_plane"], true);
   EXPECT_EQ(mcquad("fit " + points + " " + skeleton + " -o " + dir.file("q.obj") + " --projection median").code,
             kExitUsage);
   CliRun metrics = mcquad("metrics " + dir.file("fit.ply") + " " + points + " --skeleton " + skeleton);
