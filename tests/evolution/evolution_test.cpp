@@ -192,11 +192,12 @@ TEST_P(OnEachBackend, RobustModeBringsOpenRimsToTheCloud) {
 }
 
 //! A blind vertex (no feasible ray) with the cloud within epsilon goes onto
-//! the plane of its nearest point's cell, from wherever it stands: here
-//! points a third of the radius inside a tube and outside it, in every
-//! direction, end on the true surface within the cell's flatness. On the
-//! axis the cloud is a radius away, beyond epsilon (0.6 r): a hole, which
-//! hole filling handles instead.
+//! the tangent plane at its nearest cloud point, along the scan's normal
+//! there, from wherever it stands: here points 0.3 of the radius inside a
+//! tube and outside it, in every direction, end within 2 % of the radius of
+//! the true surface (onto the plane of the point's cell instead, up to 24 %:
+//! a quarter of the cells hold one point). On the axis the cloud is a
+//! radius away, beyond epsilon (0.6 r): a hole, which hole filling handles.
 TEST(BlindVertices, GoToTheirNearestPointsLevelWhereTheCloudIsNear) {
   Fixture f("tube", 20000);
   device::mcq_step_params params = make_step_params(f.parameters, 0);
