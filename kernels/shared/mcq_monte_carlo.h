@@ -90,6 +90,12 @@ MCQ_FN mcq_cell_filter mcq_vertex_cell_filter(mcq_regions regions, const MCQ_GLO
   return filter;
 }
 
+/* How much vertex v's epsilon, ray reach and band are scaled: its bone's
+ * radius over the median with params.local_epsilon, else 1. */
+MCQ_FN float mcq_vertex_scale(mcq_regions regions, mcq_uint v, mcq_step_params params) {
+  return params.local_epsilon ? regions.vertex_scale[v] : 1.0f;
+}
+
 /* Orthonormal frame (i', j', k' = n) of the paper's cones. The helper axis is
  * the world axis least parallel to n: the paper's fixed (1,0,0) degenerates
  * when n is parallel to x. */
@@ -215,7 +221,7 @@ MCQ_FN float mcq_vertex_displacement(mcq_cells cells, mcq_regions regions, mcq_v
   const MCQ_GLOBAL float* points = cells.points;
   *feasible = 0u;
   mcq_cell_filter filter = mcq_vertex_cell_filter(regions, cells.cell_facing, vertex, n, params);
-  float scale = params.local_epsilon ? regions.vertex_scale[vertex] : 1.0f;
+  float scale = mcq_vertex_scale(regions, vertex, params);
   float epsilon = params.epsilon * scale, reach = params.reach * scale, band = params.band * scale;
   if (mcq_dot(n, n) == 0.0f) return 0.0f;
   mcq_vec3 i_axis, j_axis;
@@ -437,17 +443,14 @@ MCQ_FN mcq_vec3 mcq_hole_position(const MCQ_GLOBAL float* positions, const MCQ_G
  * normal; 0 otherwise (a hole, or no normal known there). */
 MCQ_FN int mcq_nearest_plane_position(mcq_cells cells, mcq_regions regions, mcq_uint vertex, mcq_vec3 q,
                                       mcq_step_params params, mcq_vec3* target) {
-  float scale = params.local_epsilon ? regions.vertex_scale[vertex] : 1.0f;
-  float epsilon = params.epsilon * scale, d2;
+  float epsilon = params.epsilon * mcq_vertex_scale(regions, vertex, params), d2;
   int cell;
   mcq_uint point = mcq_nearest_point(cells.node_bounds, cells.node_children, cells.cell_offsets, cells.points,
                                      cells.bounds_inset, q, -1, &d2, &cell);
   if (cell < 0 || !(d2 < epsilon * epsilon)) return 0;
-  mcq_step_params bones_only = params;
-  bones_only.facing_cells = 0u;
-  mcq_vec3 unused_normal = mcq_make_vec3(0.0f, 0.0f, 0.0f); /* the facing test is off */
-  if (!mcq_cell_is_visible(mcq_vertex_cell_filter(regions, cells.cell_facing, vertex, unused_normal, bones_only), cell))
-    return 0;
+  /* The bones only: with no facing array the filter has no facing test. */
+  mcq_cell_filter bones = mcq_vertex_cell_filter(regions, 0, vertex, mcq_make_vec3(0.0f, 0.0f, 0.0f), params);
+  if (!mcq_cell_is_visible(bones, cell)) return 0;
   mcq_vec3 t = mcq_load3(cells.cell_facing, (mcq_uint)cell);
   if (mcq_dot(t, t) == 0.0f) {
     if (cells.cell_offsets[cell + 1] - cells.cell_offsets[cell] < 4u) return 0;
