@@ -177,6 +177,12 @@ bool lands_in_another_tube(const EditableSkeleton& skeleton, const SkeletonGraph
   return false;
 }
 
+//! Distance from `point` to the line through `origin` along unit `direction`.
+double distance_to_line(const Eigen::Vector3d& point, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) {
+  const Eigen::Vector3d away = point - origin;
+  return (away - away.dot(direction) * direction).norm();
+}
+
 //! The unit direction from `node` to its neighbour `next`.
 Eigen::Vector3d bone_direction(const SkeletonGraph& graph, int node, int next) {
   return (graph.positions[next] - graph.positions[node]).normalized();
@@ -250,9 +256,10 @@ Eigen::Vector3d fan_fork(const SkeletonGraph& graph, int node, const std::vector
 //! at `fork` (fan_fork), each chain cut `along` its length: the pair's move
 //! (spread_acute_junctions) for all of the fan's limbs at once. Each limb
 //! then leaves the new junction from where it parts from its neighbours.
-void spread_fan(EditableSkeleton& skeleton, const SkeletonGraph& graph, int node, const std::vector<int>& fan,
-                const Eigen::Vector3d& fork, double along) {
-  double widest = 0;
+//! Returns how far the fork lies off its limbs' first bones at most (widen_lobes).
+double spread_fan(EditableSkeleton& skeleton, const SkeletonGraph& graph, int node, const std::vector<int>& fan,
+                  const Eigen::Vector3d& fork, double along) {
+  double widest = 0, off = 0;
   for (int next : fan) widest = std::max(widest, limb_radius(skeleton, graph.chain_from(node, next)));
   skeleton.nodes.push_back(fork);
   int junction = int(skeleton.nodes.size()) - 1;
@@ -262,7 +269,37 @@ void spread_fan(EditableSkeleton& skeleton, const SkeletonGraph& graph, int node
     double r = limb_radius(skeleton, chain);
     int cut = cut_chain(skeleton, graph, chain, along);
     skeleton.add_edge(junction, cut, r);
+    off = std::max(off, distance_to_line(fork, graph.positions[node], bone_direction(graph, node, next)));
   }
+  return off;
+}
+
+//! Tubes widened round moved junctions (see widen_lobes): each created
+//! junction and how far it lies off the bones it replaced.
+struct MovedFork {
+  Eigen::Vector3d position;
+  double off;
+};
+
+//! A moved fork sits between its limbs' old bones, `off` from each: where
+//! the cloud is two or three tubes side by side, round tubes about the new
+//! bones leave the outer side of each old tube that far out of the initial
+//! mesh, near the edge of the evolution's reach (epsilon, 0.6 r). Every bone
+//! at a moved fork is widened by its `off` (the largest where it joins two),
+//! and the fork's block grows with them (node_radii); a ring still stops at
+//! the start fraction of the cloud where the cloud is narrower (make_ring in
+//! mesh/initial_mesh.cpp), so only those sides gain: the planar 8's slots
+//! beside its moved forks closed (docs/HARD_CASES.md, "Creases short of the
+//! crotch"). Done after the last move: radii widened during the moves
+//! changed the moves that followed (the 20-degree fan's cascade became one
+//! junction and its fit broke).
+void widen_lobes(TubeSkeleton& result, const std::vector<MovedFork>& forks) {
+  std::vector<double> widening(result.graph.edges.size(), 0.0);
+  for (const MovedFork& fork : forks)
+    for (size_t b = 0; b < result.graph.edges.size(); ++b)
+      for (int end : result.graph.edges[b])
+        if ((result.graph.positions[end] - fork.position).norm() < 1e-12) widening[b] = std::max(widening[b], fork.off);
+  for (size_t b = 0; b < widening.size(); ++b) result.bone_radius[b] += widening[b];
 }
 
 }  // namespace
@@ -287,7 +324,8 @@ TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssign
   std::set<std::pair<long, long>> kept;  // pairs too short to spread
   // Junctions this made are not moved again: their fork is as wide as the
   // crotch allows, and moving them on would only creep into the crotch.
-  std::vector<Eigen::Vector3d> created;
+  // The bones at them are widened once every move is done (widen_lobes).
+  std::vector<MovedFork> moved;
   // The edited skeleton becomes the one the next round looks at; its node
   // indices changed, so the pairs kept for lack of room are looked at again.
   auto take = [&](const EditableSkeleton& edited) {
@@ -295,8 +333,8 @@ TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssign
     kept.clear();
   };
   auto is_created = [&](const Eigen::Vector3d& p) {
-    for (const auto& c : created)
-      if ((c - p).norm() < 1e-12) return true;
+    for (const MovedFork& fork : moved)
+      if ((fork.position - p).norm() < 1e-12) return true;
     return false;
   };
   for (int round = 0; round < 64; ++round) {
@@ -337,8 +375,7 @@ TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssign
         fan_has_room(g, best_node, fan, along + r)) {
       const Eigen::Vector3d fork = fan_fork(g, best_node, fan, rise);
       if (!lands_in_another_tube(skeleton, g, best_node, fan, fork, kForkClearance * r)) {
-        spread_fan(skeleton, g, best_node, fan, fork, along);
-        created.push_back(fork);
+        moved.push_back({fork, spread_fan(skeleton, g, best_node, fan, fork, along)});
         take(skeleton);
         continue;
       }
@@ -370,7 +407,7 @@ TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssign
     }
     skeleton.nodes.push_back(fork);
     int junction = int(skeleton.nodes.size()) - 1;
-    created.push_back(skeleton.nodes.back());
+    moved.push_back({fork, distance_to_line(fork, g.positions[best_node], di)});
     int pi = cut_chain(skeleton, g, chain_i, along);
     int pj = cut_chain(skeleton, g, chain_j, along);
     skeleton.add_edge(best_node, junction, std::max(ri, rj));
@@ -378,6 +415,7 @@ TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssign
     skeleton.add_edge(junction, pj, rj);
     take(skeleton);
   }
+  widen_lobes(result, moved);
   result.node_radius = node_radii(result.graph, result.bone_radius);
   return result;
 }

@@ -127,8 +127,10 @@ INSTANTIATE_TEST_SUITE_P(Shapes, InitialMeshProperties,
                                          ShapeCase{"theta", {}, 20000}, ShapeCase{"y-fork", with_angle(60), 20000},
                                          // The junctions' inflation (junction_inflation.h) brings the 30-degree
                                          // Y's crotch near the surface; refined past the default resolution,
-                                         // 6 of 4,418 vertices lie up to 0.018 (2.3 % of r) outside there.
-                                         ShapeCase{"y-fork", with_angle(30), 20000, 0.02},
+                                         // 6 of 4,418 vertices lay up to 0.018 (2.3 % of r) outside there, and
+                                         // with the bones at its moved fork widened (acute_junctions.h) up to
+                                         // 0.029 (3.7 % of r).
+                                         ShapeCase{"y-fork", with_angle(30), 20000, 0.03},
                                          ShapeCase{"y-fork", with_angle(15), 20000, 0.01},
                                          ShapeCase{"star", with_arms(3), 20000}, ShapeCase{"star", with_arms(4), 20000},
                                          ShapeCase{"star", with_arms(5), 20000}, ShapeCase{"star", with_arms(6), 20000},

@@ -211,6 +211,47 @@ TEST(AcuteJunctions, AFanWhoseLimbsPartTogetherMovesAtOnce) {
   }
 }
 
+//! A moved fork sits between the bones it replaced, off each of their
+//! lines: the cloud there is two tubes side by side, and a round tube about
+//! the new bones would leave each old tube's outer side out of the initial
+//! mesh (random tree 2: 0.7 r deep after the fit, docs/HARD_CASES.md). Every
+//! bone at the fork of the 30-degree Y (branch radii 0.8) is widened by that
+//! offset; the trunk below the old junction is not.
+TEST(AcuteJunctions, BonesAtAMovedForkAreWidenedByItsOffsetFromTheOldBones) {
+  ShapeOptions options;
+  options.angle_degrees = 30;
+  const auto [shape, graph, bones] = test::ShapeWithBones("y-fork", 20000, options);
+  TubeSkeleton spread = spread_acute_junctions(graph, bones, 75.0 * M_PI / 180.0, "y-fork");
+  int old_junction = -1, fork = -1;
+  for (size_t v = 0; v < graph.node_count(); ++v)
+    if (graph.kind(int(v)) == NodeKind::kJunction) old_junction = int(v);
+  for (size_t v = 0; v < spread.graph.node_count(); ++v)
+    if (spread.graph.kind(int(v)) == NodeKind::kJunction) fork = int(v);
+  ASSERT_GE(old_junction, 0);
+  ASSERT_GE(fork, 0);
+  // The branch bones leave the old junction upward (the trunk goes down).
+  const Eigen::Vector3d& origin = graph.positions[size_t(old_junction)];
+  double off = INFINITY;
+  for (int next : graph.neighbours[size_t(old_junction)]) {
+    const Eigen::Vector3d direction = (graph.positions[size_t(next)] - origin).normalized();
+    if (direction.y() < 0) continue;
+    const Eigen::Vector3d away = spread.graph.positions[size_t(fork)] - origin;
+    off = std::min(off, (away - away.dot(direction) * direction).norm());
+  }
+  ASSERT_GT(off, 0.3);
+  int widened = 0;
+  for (size_t b = 0; b < spread.graph.edges.size(); ++b) {
+    const auto& bone = spread.graph.edges[b];
+    if (bone[0] != fork && bone[1] != fork) {
+      EXPECT_LT(spread.bone_radius[b], 1.1) << "bone " << b << " away from the fork";
+      continue;
+    }
+    EXPECT_NEAR(spread.bone_radius[b], 0.8 + off, 0.08 * 0.8) << "bone " << b << " at the fork";
+    ++widened;
+  }
+  EXPECT_EQ(widened, 3);
+}
+
 TEST(BoneAssignment, RejectsSkeletonsThatDoNotMatchTheCloud) {
   GeneratedShape shape = test::small_shape("tube", 5000);
   SkeletonGraph far =
