@@ -214,7 +214,7 @@ TEST(AcuteJunctions, AFanWhoseLimbsPartTogetherMovesAtOnce) {
 //! A moved fork sits between the bones it replaced, off each of their
 //! lines: the cloud there is two tubes side by side, and a round tube about
 //! the new bones would leave each old tube's outer side out of the initial
-//! mesh (random tree 2: 0.7 r deep after the fit, docs/HARD_CASES.md). Every
+//! mesh (the planar 8's slots beside its moved forks, docs/HARD_CASES.md). Every
 //! bone at the fork of the 30-degree Y (branch radii 0.8) is widened by that
 //! offset; the trunk below the old junction is not.
 TEST(AcuteJunctions, BonesAtAMovedForkAreWidenedByItsOffsetFromTheOldBones) {
