@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <Eigen/Geometry>
 #include <set>
 
 #include "core/quantile.h"
 
 namespace mcquad {
 namespace {
+
+using Line = Eigen::ParametrizedLine<double, 3>;
 
 //! Mutable skeleton: nodes, bones and their radii.
 struct EditableSkeleton {
@@ -177,12 +180,6 @@ bool lands_in_another_tube(const EditableSkeleton& skeleton, const SkeletonGraph
   return false;
 }
 
-//! Distance from `point` to the line through `origin` along unit `direction`.
-double distance_to_line(const Eigen::Vector3d& point, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) {
-  const Eigen::Vector3d away = point - origin;
-  return (away - away.dot(direction) * direction).norm();
-}
-
 //! The unit direction from `node` to its neighbour `next`.
 Eigen::Vector3d bone_direction(const SkeletonGraph& graph, int node, int next) {
   return (graph.positions[next] - graph.positions[node]).normalized();
@@ -269,7 +266,7 @@ double spread_fan(EditableSkeleton& skeleton, const SkeletonGraph& graph, int no
     double r = limb_radius(skeleton, chain);
     int cut = cut_chain(skeleton, graph, chain, along);
     skeleton.add_edge(junction, cut, r);
-    off = std::max(off, distance_to_line(fork, graph.positions[node], bone_direction(graph, node, next)));
+    off = std::max(off, Line(graph.positions[node], bone_direction(graph, node, next)).distance(fork));
   }
   return off;
 }
@@ -280,6 +277,13 @@ struct MovedFork {
   Eigen::Vector3d position;
   double off;
 };
+
+//! The moved fork at `p`, if any (nodes keep their positions exactly when the skeleton is rebuilt).
+const MovedFork* moved_fork_at(const std::vector<MovedFork>& moved, const Eigen::Vector3d& p) {
+  for (const MovedFork& fork : moved)
+    if ((fork.position - p).norm() < 1e-12) return &fork;
+  return nullptr;
+}
 
 //! A moved fork sits between its limbs' old bones, `off` from each: where
 //! the cloud is two or three tubes side by side, round tubes about the new
@@ -294,12 +298,13 @@ struct MovedFork {
 //! changed the moves that followed (the 20-degree fan's cascade became one
 //! junction and its fit broke).
 void widen_lobes(TubeSkeleton& result, const std::vector<MovedFork>& forks) {
-  std::vector<double> widening(result.graph.edges.size(), 0.0);
-  for (const MovedFork& fork : forks)
-    for (size_t b = 0; b < result.graph.edges.size(); ++b)
-      for (int end : result.graph.edges[b])
-        if ((result.graph.positions[end] - fork.position).norm() < 1e-12) widening[b] = std::max(widening[b], fork.off);
-  for (size_t b = 0; b < widening.size(); ++b) result.bone_radius[b] += widening[b];
+  for (size_t b = 0; b < result.graph.edges.size(); ++b) {
+    double widening = 0;
+    for (int end : result.graph.edges[b])
+      if (const MovedFork* fork = moved_fork_at(forks, result.graph.positions[end]))
+        widening = std::max(widening, fork->off);
+    result.bone_radius[b] += widening;
+  }
 }
 
 }  // namespace
@@ -332,17 +337,12 @@ TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssign
     result.graph = rebuild(edited, result.bone_radius, source);
     kept.clear();
   };
-  auto is_created = [&](const Eigen::Vector3d& p) {
-    for (const MovedFork& fork : moved)
-      if ((fork.position - p).norm() < 1e-12) return true;
-    return false;
-  };
   for (int round = 0; round < 64; ++round) {
     const SkeletonGraph& g = result.graph;
     int best_node = -1, best_i = -1, best_j = -1;
     double best_angle = min_angle;
     for (size_t v = 0; v < g.node_count(); ++v) {
-      if (g.kind(int(v)) != NodeKind::kJunction || is_created(g.positions[v])) continue;
+      if (g.kind(int(v)) != NodeKind::kJunction || moved_fork_at(moved, g.positions[v])) continue;
       const auto& n = g.neighbours[v];
       for (size_t i = 0; i < n.size(); ++i) {
         for (size_t j = i + 1; j < n.size(); ++j) {
@@ -407,7 +407,7 @@ TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssign
     }
     skeleton.nodes.push_back(fork);
     int junction = int(skeleton.nodes.size()) - 1;
-    moved.push_back({fork, distance_to_line(fork, g.positions[best_node], di)});
+    moved.push_back({fork, Line(g.positions[best_node], di).distance(fork)});
     int pi = cut_chain(skeleton, g, chain_i, along);
     int pj = cut_chain(skeleton, g, chain_j, along);
     skeleton.add_edge(best_node, junction, std::max(ri, rj));
