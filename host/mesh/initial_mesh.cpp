@@ -37,6 +37,16 @@ constexpr int kRing = 8;  // vertices around a tube in the rough mesh
 // A tube leaves its port straight for a while before turning toward its bone,
 // so neighbouring ports' tubes do not crowd the block edge between them.
 constexpr double kPortWeight = 1.4;
+// The most a ring takes of its port's tilt (MeshAssembler::sweep_chain), in
+// the length b of the blend it loses it over. A ring vertex x b along the
+// blend, its port vertex t ahead, stands x b - (1 - tilt_kept(x)) t past
+// that vertex: behind it somewhere on the blend once t > 0.89 b (a short
+// chain between two forks of the 40-degree fan had a port vertex 0.83
+// ahead over a blend of 0.71).
+constexpr double kMostTilt = 0.4;
+// The least a tilted ring's vertex advances along the path from the one
+// before it, in the rings' spacing along the path.
+constexpr double kLeastTiltedAdvance = 0.5;
 // A junction whose bones all lie within this angle of their own cube face's
 // normal gets the cube block (docs/CONSTRUCTION.md, section 3; DESIGN.md has
 // the measurements): 25 degrees from five bones on, 10 below. The forks the
@@ -283,10 +293,11 @@ class MeshAssembler {
 
     // Radius along the path: the tube's, blending from and to the rings of
     // the ports over the Hermite blends (a third of the chain at free ends).
+    const double total = path.length();
+    const double in = start_port ? s0 : total / 3, out = end_port ? length - s1 : total / 3;
     auto radius_at = [&](int k) {
       if (branch.closed) return radius_mid;
-      double s = path.arc_length[k], total = path.length();
-      double in = start_port ? s0 : total / 3, out = end_port ? length - s1 : total / 3;
+      double s = path.arc_length[k];
       if (total - s < s && total - s < out) return radius_last + (radius_mid - radius_last) * (total - s) / out;
       if (s < in) return radius_first + (radius_mid - radius_first) * s / in;
       return radius_mid;
@@ -311,13 +322,30 @@ class MeshAssembler {
       twist = closing_twist(target, target_center, path.tangents[k_end], u[k_end], offset);
       for (int i = 0; i < kRing; ++i) end_ring[i] = target[(i + offset) % kRing];
     }
+    // A port's ring lies on the block, tilted against the path where the
+    // bone leaves its face obliquely; the first rings keep that tilt and
+    // lose it over the blend, so that none falls behind the port's ring on
+    // its forward side (random tree 11: a port vertex 0.46 ahead, the first
+    // ring 0.42 ahead, their edge 0.065 long against 0.48).
     std::array<int, kRing> previous = start_ring;
+    const std::array<double, kRing> start_tilt = port_tilt(start_port ? &start_ring : nullptr, path, 0);
+    const std::array<double, kRing> end_tilt = port_tilt(end_port ? &end_ring : nullptr, path, k_end);
+    auto tilt_at = [&](int k) {
+      Tilt tilt{{}, &previous, end_port && k + 1 == k_end ? &end_ring : nullptr};
+      double s = path.arc_length[k];
+      double from_start = tilt_kept(s / std::max(in, 1e-12));
+      double from_end = tilt_kept((total - s) / std::max(out, 1e-12));
+      for (int i = 0; i < kRing; ++i)
+        tilt.ahead[size_t(i)] = from_start * std::min(start_tilt[size_t(i)], kMostTilt * in) +
+                                from_end * std::max(end_tilt[size_t(i)], -kMostTilt * out);
+      return tilt;
+    };
     for (int k = 1; k <= k_end; ++k) {
       std::array<int, kRing> ring;
       if (k == k_end && (end_port || branch.closed))
         ring = end_ring;
       else
-        ring = make_ring(path, u, k, radius_at(k), twist * path.arc_length[k] / path.length());
+        ring = make_ring(path, u, k, radius_at(k), twist * path.arc_length[k] / path.length(), tilt_at(k));
       connect_rings(previous, ring);
       previous = ring;
     }
@@ -331,8 +359,80 @@ class MeshAssembler {
     return line;
   }
 
+  //! The share of its port's tilt a ring keeps a fraction x of the way along
+  //! its blend: all of it at the port, none from the blend's end on, and
+  //! eased at both (a smoothstep), so that the rings' spacing has no kink
+  //! where the tilt runs out.
+  static double tilt_kept(double x) {
+    if (x >= 1) return 0;
+    return (1 - x) * (1 - x) * (1 + 2 * x);
+  }
+
+  //! How far each vertex of a port's `ring` lies ahead of path point k along
+  //! the path (zeros without a ring): the plane that fits the ring best, by
+  //! the mean and first harmonic of the leads round it. A block's ring is not
+  //! flat (a cube face's corners lag its edges' midpoints); that crown stays
+  //! with the port, and only the plane's tilt carries on: carried whole over
+  //! the blend, or over its first two rings only, the theta's fitted
+  //! surfaces met 6.2 and 6.6 degrees apart at a seam there (SurfacesOnShapes).
+  std::array<double, kRing> port_tilt(const std::array<int, kRing>* ring, const SweepPath& path, int k) const {
+    std::array<double, kRing> tilt{};
+    if (!ring) return tilt;
+    double mean = 0, along_cos = 0, along_sin = 0;
+    for (int i = 0; i < kRing; ++i) {
+      const double lead = (soup_.vertices[(*ring)[size_t(i)]] - path.points[k]).dot(path.tangents[k]);
+      const double angle = 2.0 * M_PI * i / kRing;
+      mean += lead / kRing;
+      along_cos += 2.0 * lead * std::cos(angle) / kRing;
+      along_sin += 2.0 * lead * std::sin(angle) / kRing;
+    }
+    for (int i = 0; i < kRing; ++i) {
+      const double angle = 2.0 * M_PI * i / kRing;
+      tilt[size_t(i)] = mean + along_cos * std::cos(angle) + along_sin * std::sin(angle);
+    }
+    return tilt;
+  }
+
+  //! A ring's share of its ports' tilts (sweep_chain): how far ahead along
+  //! the path each vertex goes, and the ring before it.
+  struct Tilt {
+    std::array<double, kRing> ahead{};
+    const std::array<int, kRing>* previous = nullptr;
+    const std::array<int, kRing>* next = nullptr;  //!< the end port's ring, after the chain's last ring
+  };
+
+  //! Where a tilted ring's vertex i at `p` stands along `tangent`, at least
+  //! `least` ahead of its neighbour on the ring before. Where the path bends,
+  //! a ring's inner side advances less than its centre: there the tilt is
+  //! let go no faster than the ring advances. The ports' rings are not flat
+  //! (port_tilt), and the chain's last ring also stays that far short of the
+  //! end port's; between the two, where they leave less room, it stands
+  //! halfway.
+  Eigen::Vector3d spaced(const Eigen::Vector3d& p, const Eigen::Vector3d& tangent, double least, const Tilt& tilt,
+                         int i) const {
+    const double at = p.dot(tangent);
+    const Eigen::Vector3d& before = soup_.vertices[(*tilt.previous)[size_t(i)]];
+    const double lowest = tilt.ahead[size_t(i)] != 0 ? before.dot(tangent) + least : -INFINITY;
+    const double highest = tilt.next ? soup_.vertices[(*tilt.next)[size_t(i)]].dot(tangent) - least : INFINITY;
+    if (lowest > highest) return halfway(p, tangent, before, soup_.vertices[(*tilt.next)[size_t(i)]]);
+    return p + (std::clamp(at, lowest, highest) - at) * tangent;
+  }
+
+  //! Where a ring vertex at `p` stands between its neighbours `before` and
+  //! `after` on two ports' rings that leave it too little room along
+  //! `tangent`: halfway along it, or halfway between them, whichever leaves
+  //! its shorter edge to them the longer (random tree 14 at 20,000 points
+  //! needed the second, random tree 10 at 30,000 the first).
+  static Eigen::Vector3d halfway(const Eigen::Vector3d& p, const Eigen::Vector3d& tangent,
+                                 const Eigen::Vector3d& before, const Eigen::Vector3d& after) {
+    const Eigen::Vector3d along = p + (0.5 * (before + after) - p).dot(tangent) * tangent;
+    const Eigen::Vector3d between = 0.5 * (before + after);
+    auto shorter_edge = [&](const Eigen::Vector3d& q) { return std::min((q - before).norm(), (q - after).norm()); };
+    return shorter_edge(along) >= shorter_edge(between) ? along : between;
+  }
+
   std::array<int, kRing> make_ring(const SweepPath& path, const std::vector<Eigen::Vector3d>& u, int k, double radius,
-                                   double twist) {
+                                   double twist, const std::optional<Tilt>& tilt = std::nullopt) {
     std::array<int, kRing> ring;
     Eigen::Vector3d v = path.tangents[k].cross(u[k]);
     std::array<Eigen::Vector3d, kRing> radial;
@@ -345,12 +445,16 @@ class MeshAssembler {
     // at the same start fraction, centred in the cloud's cross-section: the
     // centre line's blend from a port can pass off a thin branch's axis, and
     // a ring cut short on one side only would collapse against its wall.
+    // A tilted ring's vertex looks for the cloud from where it will stand along the path.
     Eigen::Vector3d centre = path.points[k];
-    std::array<double, kRing> distance;
+    const Eigen::Vector3d& tangent = path.tangents[k];
+    std::array<double, kRing> distance, ahead{};
+    if (tilt) ahead = tilt->ahead;
     double enough = radius / options_.start_fraction;
     for (int pass = 0; pass < 3; ++pass) {
       for (int i = 0; i < kRing; ++i)
-        distance[size_t(i)] = probe_.distance_along(centre, radial[size_t(i)], 2.0 * enough);
+        distance[size_t(i)] =
+            probe_.distance_along(centre + ahead[size_t(i)] * tangent, radial[size_t(i)], 2.0 * enough);
       if (*std::min_element(distance.begin(), distance.end()) >= enough || pass == 2) break;
       // Opposite directions see the wall at R + d.r and R - d.r from a centre
       // off by d; over the four pairs 45 degrees apart, their differences
@@ -364,9 +468,12 @@ class MeshAssembler {
       if (offset.norm() > 0.5 * radius) offset *= 0.5 * radius / offset.norm();
       centre += offset;
     }
-    for (int i = 0; i < kRing; ++i)
-      ring[i] = soup_.add_vertex(centre +
-                                 std::min(radius, options_.start_fraction * distance[size_t(i)]) * radial[size_t(i)]);
+    for (int i = 0; i < kRing; ++i) {
+      Eigen::Vector3d p = centre + ahead[size_t(i)] * tangent +
+                          std::min(radius, options_.start_fraction * distance[size_t(i)]) * radial[size_t(i)];
+      if (tilt) p = spaced(p, tangent, kLeastTiltedAdvance * (path.arc_length[k] - path.arc_length[k - 1]), *tilt, i);
+      ring[i] = soup_.add_vertex(p);
+    }
     return ring;
   }
 

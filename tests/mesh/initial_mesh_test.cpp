@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
+#include <vector>
 
 #include "core/errors.h"
 #include "helpers.h"
@@ -129,8 +131,11 @@ INSTANTIATE_TEST_SUITE_P(Shapes, InitialMeshProperties,
                                          // Y's crotch near the surface; refined past the default resolution,
                                          // 6 of 4,418 vertices lay up to 0.018 (2.3 % of r) outside there, and
                                          // with the bones at its moved fork widened (acute_junctions.h) up to
-                                         // 0.029 (3.7 % of r).
-                                         ShapeCase{"y-fork", with_angle(30), 20000, 0.03},
+                                         // 0.029 (3.7 % of r); with the rings keeping their port's tilt
+                                         // (initial_mesh.cpp, sweep_chain), 5 of 14,594 vertices over 0.03,
+                                         // up to 0.049 (6.1 %). The fit refines the evolved mesh instead
+                                         // (coarse to fine).
+                                         ShapeCase{"y-fork", with_angle(30), 20000, 0.06},
                                          ShapeCase{"y-fork", with_angle(15), 20000, 0.01},
                                          ShapeCase{"star", with_arms(3), 20000}, ShapeCase{"star", with_arms(4), 20000},
                                          ShapeCase{"star", with_arms(5), 20000}, ShapeCase{"star", with_arms(6), 20000},
@@ -253,6 +258,25 @@ void expect_quads_of_at_least_0_2(uint64_t seed) {
 }
 
 TEST_P(RandomTrees, InitialQuadsKeepAScaledJacobianOfAtLeast0_2) { expect_quads_of_at_least_0_2(GetParam()); }
+
+//! The rough mesh's shortest edge against its median. Where a bone leaves
+//! its block's face obliquely, the port's ring on the block reached past the
+//! first swept ring on its forward side, and the edges between them shrank:
+//! 8 of these 20 trees had one under a quarter of the median (seed 2: 0.11),
+//! and such squashed quads in a crease held the evolution back
+//! (docs/HARD_CASES.md, "Rings that keep their port's tilt"). With the
+//! rings keeping the tilt, the least is 0.258 (seed 14, which had 0.262).
+TEST_P(RandomTrees, RoughMeshHasNoEdgeUnderAQuarterOfTheMedian) {
+  const ShapeCase c = random_tree(GetParam());
+  ShapeUnderTest t(c);
+  InitialMeshOptions options;
+  options.stage = ConstructionStage::kExtruded;
+  const QuadMesh mesh = build_initial_mesh(t.graph, t.bones, t.shape.cloud, options, c.name).mesh;
+  std::vector<double> lengths;
+  for (auto e : mesh.edges()) lengths.push_back(mesh.calc_edge_length(e));
+  std::sort(lengths.begin(), lengths.end());
+  EXPECT_GE(lengths.front(), 0.25 * lengths[lengths.size() / 2]);
+}
 
 INSTANTIATE_TEST_SUITE_P(Issue20, RandomTrees, testing::Range<uint64_t>(1, 21),
                          [](const testing::TestParamInfo<uint64_t>& seed) {

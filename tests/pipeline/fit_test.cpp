@@ -201,16 +201,19 @@ TEST(AskedResolution, IsNotRefinedForCoverage) {
   EXPECT_FALSE(fit.report.coarse_evolution.has_value());
 }
 
-//! Seed 4 of the fat body with thin limbs: the skeleton extracted from its
+//! Seed 8 of the fat body with thin limbs: the skeleton extracted from its
 //! cloud has a limb whose tube overlaps another's where both leave the body,
 //! and the initial mesh on it is no manifold. The fit without a skeleton
 //! leaves that limb out and fits the rest, judged by the verdict (which the
 //! part of the cloud not reached fails), and says which limb it was. The
 //! same skeleton given by the user is refused: theirs is never changed.
+//! (Seed 4 was the case until the rings kept their port's tilt
+//! (docs/CONSTRUCTION.md, section 4): its whole skeleton now builds. Of
+//! seeds 1-30, only 8 drops a limb now.)
 TEST(FitWithoutSkeleton, LeavesOutALimbWhoseTubeOverlapsAnother) {
-  ShapeOptions seed4;
-  seed4.seed = 4;
-  GeneratedShape shape = test::small_shape("blob-limbs", 40000, seed4);
+  ShapeOptions seed8;
+  seed8.seed = 8;
+  GeneratedShape shape = test::small_shape("blob-limbs", 40000, seed8);
   FitOptions options;
   options.backend = BackendKind::kSerial;
   FitResult fit = run_fit(FitInput{shape.cloud, {}, "blob-limbs.ply", ""}, options);
@@ -219,7 +222,10 @@ TEST(FitWithoutSkeleton, LeavesOutALimbWhoseTubeOverlapsAnother) {
   ASSERT_TRUE(fit.extracted_skeleton.has_value());
   MeshStatistics s = mesh_statistics(fit.mesh);
   EXPECT_EQ(s.quads, s.faces);
-  EXPECT_EQ(s.euler_characteristic, 2);
+  // One sheet round the tree, open where the limbs it kept end open (seed 8's
+  // one open limb is the one left out).
+  EXPECT_LE(s.boundary_loops, size_t(shape.open_ends));
+  EXPECT_EQ(s.euler_characteristic, 2 - long(s.boundary_loops));
   EXPECT_EQ(intersecting_face_pairs(fit.mesh).size(), 0u);
   ASSERT_TRUE(fit.report.verdict.has_value());
   EXPECT_FALSE(fit.report.verdict->passed);
