@@ -16,7 +16,9 @@ constexpr double kDeepVertexDepth = 0.25;
 //! their depth, each round. The moves are first averaged over each vertex's
 //! one-ring (a vertex not pushed counts as a move of zero), so that
 //! neighbours on the two walls of a crease, whose nearest normals differ,
-//! move together and the fringe of a pushed region follows it smoothly; the
+//! move together and the pushes fade toward a pushed region's fringe (the
+//! vertices not pushed stay, and a lone deep vertex's push, averaged four
+//! times with four unpushed neighbours, all but vanishes); the
 //! crossing guard, started from `start`, shortens any move that would make
 //! faces cross, fold or turn over. At most `rounds` rounds; fewer once no
 //! vertex is that deep or the guard holds every move back. Returns the
