@@ -41,5 +41,19 @@ TEST(TrueSurfaceDistance, SignedMeanIsNegativeInsideAndPositiveOutside) {
   }
 }
 
+//! An open end's wall goes on past its rim for a radius, where a fit ends:
+//! beyond it lies the round end of that stretch, not more tube. A tube
+//! passing 2.5 radii past the rim keeps its own wall (random tree 14's open
+//! end had reached into such a wall and measured it as inside the shape).
+TEST(TrueSurfaceDistance, AnOpenEndGoesOnForOneRadiusPastItsRim) {
+  TubeSurface surface;
+  surface.add(Capsule{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, 0, 2), 0.5, false, true});
+  EXPECT_NEAR(surface.signed_distance(Eigen::Vector3d(0.5, 0, 2.4)), 0.0, 1e-12);  // the wall, extended
+  EXPECT_NEAR(surface.signed_distance(Eigen::Vector3d(0, 0, 3.25)), 0.25, 1e-12);  // past the stretch
+  // A tube across the axis 2.5 radii past the rim: its wall facing the end is the surface.
+  surface.add(Capsule{Eigen::Vector3d(-2, 0, 3.75), Eigen::Vector3d(2, 0, 3.75), 0.5});
+  EXPECT_NEAR(surface.signed_distance(Eigen::Vector3d(0.3, 0, 3.25)), 0.0, 1e-12);
+}
+
 }  // namespace
 }  // namespace mcquad
