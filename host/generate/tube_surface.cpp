@@ -8,12 +8,14 @@
 namespace mcquad {
 namespace {
 
-//! How far an open end's wall is extended for distance queries, in radii:
-//! a mesh reaching past the rim is measured against the tube's cylinder, not
-//! its round cap. The fits reach at most 0.08 radii past their rims (the 44
+//! How far an open end's wall is extended, in radii, for distance queries
+//! (a mesh reaching past the rim is measured against the tube's cylinder,
+//! not its round cap) and for sampling (the previous capsule's round end,
+//! reaching out of a last capsule shorter than the radius, stays
+//! unsampled). The fits reach at most 0.08 radii past their rims (the 44
 //! shapes of scripts/junction-bounds); at 3 radii random tree 14's open end
-//! reached into the wall of a tube passing beside it, and that real wall,
-//! sampled by the cloud, was measured as lying inside the shape.
+//! reached into the wall of a tube passing beside it: that wall was left
+//! unsampled, and measured as lying inside the shape.
 constexpr double kOpenExtension = 1.0;
 
 Eigen::Vector3d perpendicular(const Eigen::Vector3d& n) { return n.unitOrthogonal(); }

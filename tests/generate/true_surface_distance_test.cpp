@@ -55,5 +55,21 @@ TEST(TrueSurfaceDistance, AnOpenEndGoesOnForOneRadiusPastItsRim) {
   EXPECT_NEAR(surface.signed_distance(Eigen::Vector3d(0.3, 0, 3.25)), 0.0, 1e-12);
 }
 
+//! The cloud leaves out what lies inside the open end's extension too (the
+//! previous capsule's round end can reach out of a short last one's rim),
+//! so the extension must stay short: a tube passing 2.5 radii past the rim
+//! is sampled whole (at three radii the wall facing the end had a hole).
+TEST(TrueSurfaceDistance, ATubePastAnOpenEndIsSampledWhole) {
+  TubeSurface surface;
+  surface.add(Capsule{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, 0, 2), 0.5, false, true});
+  surface.add(Capsule{Eigen::Vector3d(-2, 0, 3.75), Eigen::Vector3d(2, 0, 3.75), 0.5});
+  std::mt19937_64 random(1);
+  PointCloud cloud = surface.sample(20000, random, 0.0);
+  size_t facing_the_end = 0;
+  for (const auto& p : cloud.points)
+    if (std::abs(p.x()) < 0.3 && p.z() > 3.2 && p.z() < 3.35) facing_the_end += 1;
+  EXPECT_GT(facing_the_end, 20u);
+}
+
 }  // namespace
 }  // namespace mcquad
