@@ -78,6 +78,12 @@ struct EvolutionParameters {
   //! vertices settle on a curved surface rather than inside it by the cells'
   //! sagitta (docs/DESIGN.md, "Curvature correction").
   bool curvature_correction = true;
+  //! With the curvature correction: the shape operator of the mesh the
+  //! evolution started from, not of the current one. The fit sets it for
+  //! the evolution of a fitted mesh refined (coarse to fine): there the
+  //! current mesh's curvature, fitted over edges shorter than the samples'
+  //! spread, feeds its own noise back (docs/DESIGN.md).
+  bool curvature_at_start = false;
   //! Robust mode, on a scan with normals: after the evolution, at most this
   //! many rounds of smoothing the faces turned against the scan's normals
   //! (evolution/turned_face_smoothing.h); 0 = off.

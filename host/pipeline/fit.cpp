@@ -307,9 +307,12 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
   const bool default_resolution = options.initial.resolution <= 0 && options.initial.target_vertices == 0;
   const bool may_refine = options.evolve && options.measure && robust && parameters.refine_uncovered &&
                           default_resolution && setup.initial.finer_levels == 0;
+  EvolutionParameters refined_parameters = parameters;
+  refined_parameters.curvature_at_start = true;
   if (options.evolve)
-    report.evolution = evolve_mesh(setup, options, parameters, *scan, result.mesh, timer, early_backend, "",
-                                   may_refine ? &unsmoothed : nullptr);
+    report.evolution =
+        evolve_mesh(setup, options, report.coarse_evolution ? refined_parameters : parameters, *scan, result.mesh,
+                    timer, early_backend, "", may_refine ? &unsmoothed : nullptr);
   auto measure = [&](const std::string& stage) {
     report.metrics = timer.run(stage, [&] { return measure_quality(result.mesh, cloud, setup.cells, &graph, &*scan); });
     report.verdict = judge_mesh(*report.metrics, setup.median_radius, setup.initial.open_ends);
@@ -321,7 +324,7 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
       timer.rename("metrics", "coarse_metrics");
       report.coarse_evolution = std::move(report.evolution);
       refine_evolved_mesh(setup, result.mesh, unsmoothed, *report.coarse_evolution, 1, timer);
-      report.evolution = evolve_mesh(setup, options, parameters, *scan, result.mesh, timer, early_backend);
+      report.evolution = evolve_mesh(setup, options, refined_parameters, *scan, result.mesh, timer, early_backend);
       measure("metrics");
     });
   }

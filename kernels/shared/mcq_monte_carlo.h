@@ -24,7 +24,8 @@ typedef struct {
                */
   mcq_uint facing_cells; /* 1: rays pass through cells whose scan normals face away from the vertex's normal */
   float min_facing;      /* with facing_cells, the least dot(cell facing, vertex normal) of a cell a ray may hit */
-  mcq_uint curvature_correction; /* 1: each sample's projection is corrected by the mesh's curvature at the vertex */
+  mcq_uint curvature_correction; /* 1: each sample's projection is corrected by the mesh's curvature at the vertex;
+                                    2: by the curvature of the mesh the evolution started from */
   mcq_uint nearest_plane;        /* 1: a vertex no ray finds a feasible cell for, with the cloud within epsilon,
                                     moves along the scan's normal at its nearest cloud point to that point's level */
 } mcq_step_params;
@@ -474,8 +475,12 @@ MCQ_FN mcq_vec3 mcq_evolve_vertex(const MCQ_GLOBAL float* positions, const MCQ_G
   mcq_vec3 q = mcq_load3(positions, vertex);
   mcq_vec3 n = mcq_load3(normals, vertex);
   mcq_shape_operator shape = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
-  if (params.curvature_correction && !mesh.boundary[vertex])
+  if (params.curvature_correction == 1u && !mesh.boundary[vertex])
     shape = mcq_vertex_shape_operator(positions, mesh.faces, mesh.vertex_face_offsets, mesh.vertex_faces, vertex, q, n);
+  if (params.curvature_correction == 2u && !mesh.boundary[vertex])
+    shape = mcq_vertex_shape_operator(initial_positions, mesh.faces, mesh.vertex_face_offsets, mesh.vertex_faces,
+                                      vertex, mcq_load3(initial_positions, vertex),
+                                      mcq_load3(initial_normals, vertex));
   float delta = mcq_vertex_displacement(cells, regions, q, n, shape, vertex, params, feasible);
   mcq_vec3 target = mcq_add(q, mcq_scale(n, delta));
   int blind =
