@@ -59,18 +59,20 @@ class CellTreeBuilder {
  public:
   CellTreeBuilder(std::vector<float>& xyz, size_t leaf_size) : xyz_(xyz), leaf_size_(leaf_size) {}
 
-  std::unique_ptr<BuildNode> build() {
+  std::unique_ptr<BuildNode> build(bool split_wide) {
     auto root = std::make_unique<BuildNode>();
     root->last = xyz_.size() / 3;
     SplitBox box = bounds(0, root->last);
 #pragma omp parallel
 #pragma omp single
     divide(*root, box);
+    if (split_wide) split_wide_leaves(*root);
     return root;
   }
 
  private:
   static constexpr size_t kParallelPoints = 1 << 16;
+  static constexpr float kWidestLeaf = 6.0f;
 
   float at(size_t i, int axis) const { return xyz_[3 * i + size_t(axis)]; }
 
@@ -90,6 +92,52 @@ class CellTreeBuilder {
       box.high[k] = hi;
     }
     return box;
+  }
+
+  //! A leaf of the middle split holds at most leaf_size points but may span
+  //! a gap: where a cell's box, split at its middle, holds a few points of
+  //! two tubes' walls, the leaf stretches across the air between them, and
+  //! a ray entering it averages both walls (random tree 5: a 4-point leaf
+  //! over ten median leaves long, its points 2.1 apart on two tubes, drew
+  //! the crease between them a radius out). Leaves longer than kWidestLeaf times the median
+  //! leaf are split on until they are not, down to single points.
+  void split_wide_leaves(BuildNode& root) {
+    std::vector<BuildNode*> leaves;
+    collect_leaves(root, leaves);
+    std::vector<float> spans(leaves.size());
+    for (size_t i = 0; i < leaves.size(); ++i) spans[i] = span(*leaves[i]);
+    if (spans.empty()) return;
+    std::nth_element(spans.begin(), spans.begin() + long(spans.size() / 2), spans.end());
+    const float limit = kWidestLeaf * spans[spans.size() / 2];
+    for (BuildNode* leaf : leaves) split_while_wider(*leaf, limit);
+  }
+
+  static void collect_leaves(BuildNode& node, std::vector<BuildNode*>& leaves) {
+    if (node.is_leaf()) {
+      leaves.push_back(&node);
+      return;
+    }
+    for (auto& child : node.child) collect_leaves(*child, leaves);
+  }
+
+  //! The longest side of the box round the node's points.
+  float span(const BuildNode& node) const {
+    SplitBox box = bounds(node.first, node.last);
+    return std::max({box.high[0] - box.low[0], box.high[1] - box.low[1], box.high[2] - box.low[2]});
+  }
+
+  void split_while_wider(BuildNode& node, float limit) {
+    const size_t count = node.last - node.first;
+    if (count < 2 || !(span(node) > limit)) return;
+    int axis = 0;
+    float cut = 0;
+    size_t index = split(node.first, count, bounds(node.first, node.last), axis, cut);
+    index = std::clamp<size_t>(index, 1, count - 1);
+    for (auto& child : node.child) child = std::make_unique<BuildNode>();
+    node.child[0]->first = node.first;
+    node.child[0]->last = node.child[1]->first = node.first + index;
+    node.child[1]->last = node.last;
+    for (auto& child : node.child) split_while_wider(*child, limit);
   }
 
   void divide(BuildNode& node, const SplitBox& box) {
@@ -298,12 +346,12 @@ float bounds_inset(const std::vector<float>& node_bounds, float padding) {
 
 }  // namespace
 
-CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size, bool pad_boxes) {
+CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size, bool pad_boxes, bool split_wide_leaves) {
   if (cloud.empty()) throw InputError("cannot build cells: the point cloud is empty");
   if (cloud.size() >= size_t(UINT32_MAX)) throw UnsupportedError("clouds of 2^32 points or more are not supported");
   CellTree cells;
   cells.points.assign(cloud.data(), cloud.data() + 3 * cloud.size());
-  std::unique_ptr<BuildNode> root = CellTreeBuilder(cells.points, std::max<size_t>(leaf_size, 1)).build();
+  std::unique_ptr<BuildNode> root = CellTreeBuilder(cells.points, std::max<size_t>(leaf_size, 1)).build(split_wide_leaves);
   // Exact sizes up front: grown by doubling, the arrays of a 10^7-point
   // cloud would hold up to twice their size, and copy it at every step.
   size_t nodes = 0, leaves = 0;

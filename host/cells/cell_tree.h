@@ -55,6 +55,10 @@ double mean_vertex_error(const CellTree& cells, const std::vector<float>& positi
 //! padded by the cloud's median nearest-neighbour distance unless
 //! `pad_boxes` is false (the paper's tight boxes). Throws UnsupportedError if the tree is deeper than
 //! the traversal stack allows.
-CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size, bool pad_boxes = true);
+//! Unless `split_wide_leaves` is false (nanoflann's leaves exactly), a leaf
+//! more than six times as long as the median leaf is split on until it is
+//! not: such a leaf spans a gap between two walls.
+CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size, bool pad_boxes = true,
+                         bool split_wide_leaves = true);
 
 }  // namespace mcquad
