@@ -98,6 +98,14 @@ void BM_CellTree(benchmark::State& state) {
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(cloud.size()));
 }
 
+// nanoflann's leaves exactly, without splitting the leaves that span a gap
+// (split_wide_leaves): what that rule costs.
+void BM_CellTreeNanoflannLeaves(benchmark::State& state) {
+  const PointCloud& cloud = prepared(size_t(state.range(0)), 0).cloud;
+  for (auto _ : state) benchmark::DoNotOptimize(build_cell_tree(cloud, cell_leaf_size(0, cloud.size()), true, false));
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(cloud.size()));
+}
+
 void BM_Radius(benchmark::State& state) {
   Prepared& p = prepared(size_t(state.range(0)), 0);
   for (auto _ : state) benchmark::DoNotOptimize(assign_points_to_bones(p.graph, p.cloud, "knot"));
@@ -200,6 +208,7 @@ void BM_WriteMesh(benchmark::State& state) {
 BENCHMARK(BM_ReadPly)->Arg(100000)->Arg(413696)->Arg(1000000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SortSpatially)->Arg(100000)->Arg(413696)->Arg(1000000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CellTree)->Arg(100000)->Arg(413696)->Arg(1000000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CellTreeNanoflannLeaves)->Arg(413696)->Arg(1000000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Radius)->Arg(100000)->Arg(413696)->Arg(1000000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ExtractSkeleton)->Arg(100000)->Arg(413696)->Arg(1000000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_InitialMesh)->Arg(0)->Arg(30000)->Unit(benchmark::kMillisecond);

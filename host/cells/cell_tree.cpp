@@ -105,11 +105,15 @@ class CellTreeBuilder {
     std::vector<BuildNode*> leaves;
     collect_leaves(root, leaves);
     std::vector<float> spans(leaves.size());
-    for (size_t i = 0; i < leaves.size(); ++i) spans[i] = span(*leaves[i]);
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < long(leaves.size()); ++i) spans[size_t(i)] = span(*leaves[size_t(i)]);
     if (spans.empty()) return;
-    std::nth_element(spans.begin(), spans.begin() + long(spans.size() / 2), spans.end());
-    const float limit = kWidestLeaf * spans[spans.size() / 2];
-    for (BuildNode* leaf : leaves) split_while_wider(*leaf, limit);
+    std::vector<float> sorted = spans;
+    std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
+    const float limit = kWidestLeaf * sorted[sorted.size() / 2];
+    // Leaves own disjoint runs of points, so each is split on its own.
+    for (size_t i = 0; i < leaves.size(); ++i)
+      if (spans[i] > limit) split_while_wider(*leaves[i], limit);
   }
 
   static void collect_leaves(BuildNode& node, std::vector<BuildNode*>& leaves) {
@@ -351,7 +355,8 @@ CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size, bool pad_box
   if (cloud.size() >= size_t(UINT32_MAX)) throw UnsupportedError("clouds of 2^32 points or more are not supported");
   CellTree cells;
   cells.points.assign(cloud.data(), cloud.data() + 3 * cloud.size());
-  std::unique_ptr<BuildNode> root = CellTreeBuilder(cells.points, std::max<size_t>(leaf_size, 1)).build(split_wide_leaves);
+  std::unique_ptr<BuildNode> root =
+      CellTreeBuilder(cells.points, std::max<size_t>(leaf_size, 1)).build(split_wide_leaves);
   // Exact sizes up front: grown by doubling, the arrays of a 10^7-point
   // cloud would hold up to twice their size, and copy it at every step.
   size_t nodes = 0, leaves = 0;

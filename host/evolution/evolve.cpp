@@ -36,8 +36,8 @@ device::mcq_step_params make_step_params(const EvolutionParameters& parameters, 
   params.facing_cells = robust && parameters.facing_cells ? 1u : 0u;
   params.min_facing = float(parameters.min_facing);
   params.curvature_correction = !robust || !parameters.curvature_correction ? 0u
-                                : parameters.curvature_at_start            ? 2u
-                                                                           : 1u;
+                                : parameters.curvature_at_start             ? 2u
+                                                                            : 1u;
   params.nearest_plane = robust && parameters.nearest_plane ? 1u : 0u;
   return params;
 }

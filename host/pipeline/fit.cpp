@@ -310,9 +310,8 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
   EvolutionParameters refined_parameters = parameters;
   refined_parameters.curvature_at_start = true;
   if (options.evolve)
-    report.evolution =
-        evolve_mesh(setup, options, report.coarse_evolution ? refined_parameters : parameters, *scan, result.mesh,
-                    timer, early_backend, "", may_refine ? &unsmoothed : nullptr);
+    report.evolution = evolve_mesh(setup, options, report.coarse_evolution ? refined_parameters : parameters, *scan,
+                                   result.mesh, timer, early_backend, "", may_refine ? &unsmoothed : nullptr);
   auto measure = [&](const std::string& stage) {
     report.metrics = timer.run(stage, [&] { return measure_quality(result.mesh, cloud, setup.cells, &graph, &*scan); });
     report.verdict = judge_mesh(*report.metrics, setup.median_radius, setup.initial.open_ends);

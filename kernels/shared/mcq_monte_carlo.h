@@ -479,8 +479,7 @@ MCQ_FN mcq_vec3 mcq_evolve_vertex(const MCQ_GLOBAL float* positions, const MCQ_G
     shape = mcq_vertex_shape_operator(positions, mesh.faces, mesh.vertex_face_offsets, mesh.vertex_faces, vertex, q, n);
   if (params.curvature_correction == 2u && !mesh.boundary[vertex])
     shape = mcq_vertex_shape_operator(initial_positions, mesh.faces, mesh.vertex_face_offsets, mesh.vertex_faces,
-                                      vertex, mcq_load3(initial_positions, vertex),
-                                      mcq_load3(initial_normals, vertex));
+                                      vertex, mcq_load3(initial_positions, vertex), mcq_load3(initial_normals, vertex));
   float delta = mcq_vertex_displacement(cells, regions, q, n, shape, vertex, params, feasible);
   mcq_vec3 target = mcq_add(q, mcq_scale(n, delta));
   int blind =
