@@ -99,8 +99,9 @@ class CellTreeBuilder {
   //! two tubes' walls, the leaf stretches across the air between them, and
   //! a ray entering it averages both walls (random tree 5: a 4-point leaf
   //! over ten median leaves long, its points 2.1 apart on two tubes, drew
-  //! the crease between them a radius out). Leaves longer than kWidestLeaf times the median
-  //! leaf are split on until they are not, down to single points.
+  //! the crease between them a radius out). Leaves longer than kWidestLeaf
+  //! times the median leaf are split on until they are not, down to single
+  //! points.
   void split_wide_leaves(BuildNode& root) {
     std::vector<BuildNode*> leaves;
     collect_leaves(root, leaves);

@@ -13,9 +13,9 @@ namespace {
 //! not its round cap) and for sampling (the previous capsule's round end,
 //! reaching out of a last capsule shorter than the radius, stays
 //! unsampled). Fits reach at most 0.08 radii past their rims (37 shapes
-//! of scripts/junction-bounds, docs/HARD_CASES.md); at 3 radii random tree 14's open end
-//! reached into the wall of a tube passing beside it: that wall was left
-//! unsampled, and measured as lying inside the shape.
+//! of scripts/junction-bounds, docs/HARD_CASES.md); at 3 radii random tree
+//! 14's open end reached into the wall of a tube passing beside it: that
+//! wall was left unsampled, and measured as lying inside the shape.
 constexpr double kOpenExtension = 1.0;
 
 Eigen::Vector3d perpendicular(const Eigen::Vector3d& n) { return n.unitOrthogonal(); }
