@@ -107,7 +107,8 @@ class CellTreeBuilder {
     collect_leaves(root, leaves);
     std::vector<float> spans(leaves.size());
 #pragma omp parallel for schedule(static)
-    for (long i = 0; i < long(leaves.size()); ++i) spans[size_t(i)] = span(*leaves[size_t(i)]);
+    for (long i = 0; i < long(leaves.size()); ++i)
+      spans[size_t(i)] = span(bounds(leaves[size_t(i)]->first, leaves[size_t(i)]->last));
     if (spans.empty()) return;
     std::vector<float> sorted = spans;
     std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
@@ -125,18 +126,19 @@ class CellTreeBuilder {
     for (auto& child : node.child) collect_leaves(*child, leaves);
   }
 
-  //! The longest side of the box round the node's points.
-  float span(const BuildNode& node) const {
-    SplitBox box = bounds(node.first, node.last);
+  //! The longest side of a box.
+  static float span(const SplitBox& box) {
     return std::max({box.high[0] - box.low[0], box.high[1] - box.low[1], box.high[2] - box.low[2]});
   }
 
   void split_while_wider(BuildNode& node, float limit) {
     const size_t count = node.last - node.first;
-    if (count < 2 || !(span(node) > limit)) return;
+    if (count < 2) return;
+    const SplitBox box = bounds(node.first, node.last);
+    if (!(span(box) > limit)) return;
     int axis = 0;
     float cut = 0;
-    size_t index = split(node.first, count, bounds(node.first, node.last), axis, cut);
+    size_t index = split(node.first, count, box, axis, cut);
     index = std::clamp<size_t>(index, 1, count - 1);
     for (auto& child : node.child) child = std::make_unique<BuildNode>();
     node.child[0]->first = node.first;

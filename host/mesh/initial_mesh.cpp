@@ -425,8 +425,8 @@ class MeshAssembler {
   //! needed the second, random tree 10 at 30,000 the first).
   static Eigen::Vector3d halfway(const Eigen::Vector3d& p, const Eigen::Vector3d& tangent,
                                  const Eigen::Vector3d& before, const Eigen::Vector3d& after) {
-    const Eigen::Vector3d along = p + (0.5 * (before + after) - p).dot(tangent) * tangent;
     const Eigen::Vector3d between = 0.5 * (before + after);
+    const Eigen::Vector3d along = p + (between - p).dot(tangent) * tangent;
     auto shorter_edge = [&](const Eigen::Vector3d& q) { return std::min((q - before).norm(), (q - after).norm()); };
     return shorter_edge(along) >= shorter_edge(between) ? along : between;
   }

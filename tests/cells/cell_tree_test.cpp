@@ -160,14 +160,14 @@ TEST(CellTree, NoCellSpansTheGapBetweenTwoWalls) {
   const CellTree cells = build_cell_tree(cloud, 6);
   EXPECT_LE(longest_over_median(cell_spans(cells)), 6.0f);
   EXPECT_EQ(cells.cell_offsets.back(), cloud.size());
-  std::vector<float> sorted_cells = cells.points, sorted_cloud(cloud.data(), cloud.data() + 3 * cloud.size());
-  auto by_point = [](std::vector<float>& xyz) {
+  const std::vector<float> cloud_xyz(cloud.data(), cloud.data() + 3 * cloud.size());
+  auto by_point = [](const std::vector<float>& xyz) {
     std::vector<std::array<float, 3>> p(xyz.size() / 3);
     for (size_t i = 0; i < p.size(); ++i) p[i] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
     std::sort(p.begin(), p.end());
     return p;
   };
-  EXPECT_EQ(by_point(sorted_cells), by_point(sorted_cloud));
+  EXPECT_EQ(by_point(cells.points), by_point(cloud_xyz));
 }
 
 TEST(CellTree, CellsPartitionTheCloudWithTightBoxes) {
