@@ -57,7 +57,8 @@ struct SplitBox {
 //! different cores. At 10^8 points: 26 s before, see docs/PERFORMANCE.md.
 class CellTreeBuilder {
  public:
-  CellTreeBuilder(std::vector<float>& xyz, size_t leaf_size) : xyz_(xyz), leaf_size_(leaf_size) {}
+  CellTreeBuilder(std::vector<float>& xyz, size_t leaf_size, const LongestLeaf& longest_leaf)
+      : xyz_(xyz), leaf_size_(leaf_size), longest_leaf_(longest_leaf) {}
 
   std::unique_ptr<BuildNode> build(bool split_wide) {
     auto root = std::make_unique<BuildNode>();
@@ -105,17 +106,24 @@ class CellTreeBuilder {
   void split_wide_leaves(BuildNode& root) {
     std::vector<BuildNode*> leaves;
     collect_leaves(root, leaves);
-    std::vector<float> spans(leaves.size());
+    std::vector<float> spans(leaves.size()), limits(leaves.size(), std::numeric_limits<float>::infinity());
 #pragma omp parallel for schedule(static)
-    for (long i = 0; i < long(leaves.size()); ++i)
-      spans[size_t(i)] = span(bounds(leaves[size_t(i)]->first, leaves[size_t(i)]->last));
+    for (long i = 0; i < long(leaves.size()); ++i) {
+      const SplitBox box = bounds(leaves[size_t(i)]->first, leaves[size_t(i)]->last);
+      spans[size_t(i)] = span(box);
+      if (longest_leaf_)
+        limits[size_t(i)] = longest_leaf_(
+            0.5f * Eigen::Vector3f(box.low[0] + box.high[0], box.low[1] + box.high[1], box.low[2] + box.high[2]));
+    }
     if (spans.empty()) return;
     std::vector<float> sorted = spans;
     std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
-    const float limit = kWidestLeaf * sorted[sorted.size() / 2];
+    const float widest = kWidestLeaf * sorted[sorted.size() / 2];
     // Leaves own disjoint runs of points, so each is split on its own.
-    for (size_t i = 0; i < leaves.size(); ++i)
+    for (size_t i = 0; i < leaves.size(); ++i) {
+      const float limit = std::min(widest, limits[i]);
       if (spans[i] > limit) split_while_wider(*leaves[i], limit);
+    }
   }
 
   static void collect_leaves(BuildNode& node, std::vector<BuildNode*>& leaves) {
@@ -236,6 +244,7 @@ class CellTreeBuilder {
 
   std::vector<float>& xyz_;
   size_t leaf_size_;
+  const LongestLeaf& longest_leaf_;
 };
 
 //! Writes the built tree into the flat arrays, depth first (a node, its
@@ -353,13 +362,14 @@ float bounds_inset(const std::vector<float>& node_bounds, float padding) {
 
 }  // namespace
 
-CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size, bool pad_boxes, bool split_wide_leaves) {
+CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size, bool pad_boxes, bool split_wide_leaves,
+                         const LongestLeaf& longest_leaf) {
   if (cloud.empty()) throw InputError("cannot build cells: the point cloud is empty");
   if (cloud.size() >= size_t(UINT32_MAX)) throw UnsupportedError("clouds of 2^32 points or more are not supported");
   CellTree cells;
   cells.points.assign(cloud.data(), cloud.data() + 3 * cloud.size());
   std::unique_ptr<BuildNode> root =
-      CellTreeBuilder(cells.points, std::max<size_t>(leaf_size, 1)).build(split_wide_leaves);
+      CellTreeBuilder(cells.points, std::max<size_t>(leaf_size, 1), longest_leaf).build(split_wide_leaves);
   // Exact sizes up front: grown by doubling, the arrays of a 10^7-point
   // cloud would hold up to twice their size, and copy it at every step.
   size_t nodes = 0, leaves = 0;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/point_cloud.h"
@@ -57,8 +58,11 @@ double mean_vertex_error(const CellTree& cells, const std::vector<float>& positi
 //! the traversal stack allows.
 //! Unless `split_wide_leaves` is false (nanoflann's leaves exactly), a leaf
 //! more than six times as long as the median leaf is split on until it is
-//! not: such a leaf spans a gap between two walls.
+//! not: such a leaf spans a gap between two walls. With `longest_leaf`, a
+//! leaf longer than longest_leaf(its box's centre) is split on too (the
+//! pipeline passes a fraction of the local tube radius).
+using LongestLeaf = std::function<float(const Eigen::Vector3f& centre)>;
 CellTree build_cell_tree(const PointCloud& cloud, size_t leaf_size, bool pad_boxes = true,
-                         bool split_wide_leaves = true);
+                         bool split_wide_leaves = true, const LongestLeaf& longest_leaf = {});
 
 }  // namespace mcquad

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <queue>
 
 #include "skeleton/nearest_bone.h"
@@ -42,6 +43,11 @@ std::vector<uint32_t> bones_within(const SkeletonGraph& graph, const std::vector
   return seen;
 }
 
+//! Cells longer than this fraction of their bone's radius are split
+//! (longest_cell_by_radius). A third of the radius brought issue 20's shapes
+//! closer still but turned more of their faces (docs/HARD_CASES.md).
+constexpr float kLongestCellPerRadius = 0.5f;
+
 }  // namespace
 
 SkeletonRegions build_skeleton_regions(const TubeSkeleton& skeleton, const CellTree& cells, const MeshArrays& mesh,
@@ -74,6 +80,14 @@ SkeletonRegions build_skeleton_regions(const TubeSkeleton& skeleton, const CellT
     regions.visible_offsets.push_back(uint32_t(regions.visible_bones.size()));
   }
   return regions;
+}
+
+LongestLeaf longest_cell_by_radius(const TubeSkeleton& skeleton) {
+  auto nearest = std::make_shared<const NearestBone>(skeleton.graph);
+  std::vector<double> radius = skeleton.bone_radius;
+  return [nearest, radius](const Eigen::Vector3f& centre) {
+    return kLongestCellPerRadius * float(radius[size_t(nearest->find(centre.cast<double>()).bone)]);
+  };
 }
 
 }  // namespace mcquad

@@ -39,4 +39,16 @@ inline device::mcq_regions regions_view(const SkeletonRegions& regions) {
 SkeletonRegions build_skeleton_regions(const TubeSkeleton& skeleton, const CellTree& cells, const MeshArrays& mesh,
                                        double median_radius, double window = 2.0);
 
+//! The longest cell the skeleton lets a tube have (build_cell_tree's
+//! `longest_leaf`): half the radius of the bone nearest to the cell. Where
+//! a randomly sampled cloud is sparse for its tube (the octopus's arms of
+//! radius 0.32, 0.28 r between neighbours), a gap in it can leave a leaf of
+//! two points a third of the way round the tube; a vertex in its box
+//! averages their chord and stays inside (0.3 r on one arm, traced; the
+//! octopus's mean / p95 distance to the true surface 1.44 / 5.11 -> 0.73 /
+//! 2.57 % r). Densely sampled scans have few leaves that long: of the six
+//! shared scans' figures one moved, by 0.0001 r (docs/HARD_CASES.md). The
+//! function refers to `skeleton`, which must outlive it.
+LongestLeaf longest_cell_by_radius(const TubeSkeleton& skeleton);
+
 }  // namespace mcquad

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <limits>
 
 #include <nanoflann.hpp>
 #include <numeric>
@@ -168,6 +169,40 @@ TEST(CellTree, NoCellSpansTheGapBetweenTwoWalls) {
     return p;
   };
   EXPECT_EQ(by_point(cells.points), by_point(cloud_xyz));
+}
+
+//! With a longest leaf given (the pipeline gives half the local tube
+//! radius, cells/skeleton_regions.h), every cell of two points or more is
+//! no longer than it where it applies, here where x > 0 (judged at the
+//! leaf's centre before it is split, so cells near x = 0 are left out), and
+//! the cells still hold every point once.
+TEST(CellTree, NoCellIsLongerThanTheLongestLeafGiven) {
+  ShapeOptions options;
+  options.points = 30000;
+  options.seed = 5;
+  const PointCloud cloud = generate_shape("random-tree", options).cloud;
+  std::vector<float> spans = cell_spans(build_cell_tree(cloud, 6));
+  std::nth_element(spans.begin(), spans.begin() + long(spans.size() / 2), spans.end());
+  const float longest = spans[spans.size() / 2];
+  auto limit = [longest](const Eigen::Vector3f& centre) {
+    return centre.x() > 0 ? longest : std::numeric_limits<float>::infinity();
+  };
+  const CellTree cells = build_cell_tree(cloud, 6, true, true, limit);
+  size_t split_side = 0, longer_elsewhere = 0;
+  for (size_t c = 0; c < cells.cell_count(); ++c) {
+    Eigen::AlignedBox3f box;
+    for (uint32_t i = cells.cell_offsets[c]; i < cells.cell_offsets[c + 1]; ++i)
+      box.extend(Eigen::Vector3f(cells.points[3 * i], cells.points[3 * i + 1], cells.points[3 * i + 2]));
+    if (box.center().x() > 0.5f) {
+      EXPECT_LE(box.sizes().maxCoeff(), longest) << "cell " << c;
+      ++split_side;
+    } else if (box.center().x() < -0.5f && box.sizes().maxCoeff() > longest) {
+      ++longer_elsewhere;
+    }
+  }
+  EXPECT_GT(split_side, 0u);
+  EXPECT_GT(longer_elsewhere, 0u) << "the other side keeps its cells";
+  EXPECT_EQ(cells.cell_offsets.back(), cloud.size());
 }
 
 TEST(CellTree, CellsPartitionTheCloudWithTightBoxes) {
