@@ -49,7 +49,10 @@ EvolutionSetup prepare_evolution(const SkeletonGraph& graph, const PointCloud& c
   cloud_index.reset();
   sample = PointCloud();
   if (scope == SetupScope::kInitialMesh) return setup;
-  setup.cells = stages.run("cells", [&] { return build_cell_tree(cloud, cell_leaf_size(leaf_size, cloud.size())); });
+  setup.cells = stages.run("cells", [&] {
+    return build_cell_tree(cloud, cell_leaf_size(leaf_size, cloud.size()), true, true,
+                           longest_cell_by_radius(setup.initial.skeleton));
+  });
   // nanoflann allocates its tree nodes in small pooled blocks that glibc
   // keeps after they are freed (about 70 MiB at 10^7 points); give them
   // back before the device and the metrics add their own.

@@ -78,6 +78,30 @@ TEST_P(RefinedEvolution, DoesNotFeedBackItsOwnNoise) {
 INSTANTIATE_TEST_SUITE_P(CoarseToFine, RefinedEvolution, ::testing::ValuesIn(test::backend_kinds()),
                          test::backend_label);
 
+//! A tube sampled sparsely for its radius: 800 points over a capped tube of
+//! radius 1 and length 8, 0.28 r between neighbours, as on the octopus's
+//! arms. Randomly sampled, the cloud has gaps, and a kd-tree leaf of two
+//! points on either side of one reached a third of the way round the arm;
+//! a vertex inside its box averaged the chord and stayed inside. Leaves are
+//! split where longer than half the tube's radius (host/pipeline/prepare.cpp);
+//! without that the fit's mean / p95 were 2.63 / 9.55 % r on both backends.
+//! Issue 20's bounds (1 / 3 % r) are not met yet: the bounds below hold
+//! the gain.
+class SparseCloud : public ::testing::TestWithParam<BackendKind> {};
+
+TEST_P(SparseCloud, AThinTubeIsNotDentedWhereItsPointsLeaveGaps) {
+  GeneratedShape shape = test::small_shape("tube", 800);
+  FitOptions options;
+  options.backend = GetParam();
+  FitResult fit = run_fit(FitInput{shape.cloud, shape.skeleton}, options);
+  TrueSurfaceDistance truth = measure_true_surface_distance(fit.mesh, shape.surface);
+  EXPECT_LE(truth.relative.mean, 0.018) << "1.33 % r now, 2.63 % r without the rule";
+  EXPECT_LE(truth.relative.p95, 0.06) << "4.22 % r now, 9.55 % r without the rule";
+  EXPECT_EQ(intersecting_face_pairs(fit.mesh).size(), 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Issue20, SparseCloud, ::testing::ValuesIn(test::backend_kinds()), test::backend_label);
+
 //! The paper's mode keeps the paper's single evolution at any resolution.
 TEST(CoarseToFine, ThePapersModeEvolvesOnce) {
   GeneratedShape shape = test::small_shape("t-shape", 20000);
@@ -185,18 +209,20 @@ TEST_P(CoverageRefinement, KeepsTheDefaultFitWhereRefiningCannotHelp) {
   EXPECT_EQ(far->report.initial_mesh.levels_after_coarse_evolution, 0);
 }
 
-//! Random tree 17 at 20,000 points: one level finer covers the cloud (the
-//! verdict's figure 0.057 -> 0.034 of the median radius) but turns more of
+//! Random tree 17 at 15,000 points: one level finer covers the cloud (the
+//! verdict's figure 0.051 -> 0.024 of the median radius) but turns more of
 //! its area against the scan's normals, a check the default fit already
 //! fails. The default fit is the result, the same mesh as without the
 //! refinement, and the report says why. (Its case was the planar star of 8
 //! at 30,000 points until the blocks' crotches were searched in the cloud,
 //! then at 20,000 points until crowded block corners were split: each time
-//! the finer fit came to pass every check the default fit passes.)
+//! the finer fit came to pass every check the default fit passes. Random
+//! tree 17 at 20,000 points was covered at the default level, 0.050, once
+//! cells longer than half their tube's radius were split.)
 TEST_P(CoverageRefinement, KeepsTheDefaultFitWhereTheRefinedOneIsWorseElsewhere) {
   ShapeOptions tree;
   tree.seed = 17;
-  auto fits = fit_both_ways(test::small_shape("random-tree", 20000, tree), GetParam());
+  auto fits = fit_both_ways(test::small_shape("random-tree", 15000, tree), GetParam());
   if (!fits) return;
   const FitResult* plain = &fits->plain;
   const FitResult* tried = &fits->refined;
