@@ -106,6 +106,17 @@ void BM_CellTreeNanoflannLeaves(benchmark::State& state) {
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(cloud.size()));
 }
 
+// As the pipeline builds them: leaves longer than half their tube's radius
+// split too (cells/skeleton_regions.h, longest_cell_by_radius). The knot's
+// cloud is dense for its tube, so this costs the nearest-bone queries.
+void BM_CellTreeByRadius(benchmark::State& state) {
+  Prepared& p = prepared(size_t(state.range(0)), 0);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(build_cell_tree(p.cloud, cell_leaf_size(0, p.cloud.size()), true, true,
+                                             longest_cell_by_radius(p.setup.initial.skeleton)));
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(p.cloud.size()));
+}
+
 void BM_Radius(benchmark::State& state) {
   Prepared& p = prepared(size_t(state.range(0)), 0);
   for (auto _ : state) benchmark::DoNotOptimize(assign_points_to_bones(p.graph, p.cloud, "knot"));
@@ -209,6 +220,7 @@ BENCHMARK(BM_ReadPly)->Arg(100000)->Arg(413696)->Arg(1000000)->Unit(benchmark::k
 BENCHMARK(BM_SortSpatially)->Arg(100000)->Arg(413696)->Arg(1000000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CellTree)->Arg(100000)->Arg(413696)->Arg(1000000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CellTreeNanoflannLeaves)->Arg(413696)->Arg(1000000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CellTreeByRadius)->Arg(413696)->Arg(1000000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Radius)->Arg(100000)->Arg(413696)->Arg(1000000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ExtractSkeleton)->Arg(100000)->Arg(413696)->Arg(1000000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_InitialMesh)->Arg(0)->Arg(30000)->Unit(benchmark::kMillisecond);
