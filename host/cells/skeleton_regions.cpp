@@ -44,7 +44,7 @@ std::vector<uint32_t> bones_within(const SkeletonGraph& graph, const std::vector
 }
 
 //! Cells longer than this fraction of their bone's radius are split
-//! (longest_cell_by_radius). A third of the radius brought issue 20's shapes
+//! (longest_cell_by_radius). 0.35 of the radius brought issue 20's shapes
 //! closer still but turned more of their faces (docs/HARD_CASES.md).
 constexpr float kLongestCellPerRadius = 0.5f;
 
