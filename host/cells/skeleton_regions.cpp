@@ -83,10 +83,11 @@ SkeletonRegions build_skeleton_regions(const TubeSkeleton& skeleton, const CellT
 }
 
 LongestLeaf longest_cell_by_radius(const TubeSkeleton& skeleton) {
+  // NearestBone refers to the skeleton's graph, so the function refers to
+  // the skeleton for the radii too rather than copying them.
   auto nearest = std::make_shared<const NearestBone>(skeleton.graph);
-  std::vector<double> radius = skeleton.bone_radius;
-  return [nearest, radius](const Eigen::Vector3f& centre) {
-    return kLongestCellPerRadius * float(radius[size_t(nearest->find(centre.cast<double>()).bone)]);
+  return [nearest, &skeleton](const Eigen::Vector3f& centre) {
+    return kLongestCellPerRadius * float(skeleton.bone_radius[size_t(nearest->find(centre.cast<double>()).bone)]);
   };
 }
 
