@@ -127,6 +127,10 @@ struct FitCommand {
                     "from its node (0 = off)")
         ->check(range("junction_inflation"))
         ->capture_default_str();
+    add_word_option(app, "--limb-ports", init.limb_ports, on_off_words(),
+                    "robust mode: a limb over three times thinner than its junction block's face starts from a face "
+                    "of its own size inset in it (on, off; docs/HARD_CASES.md, \"Thin limbs get ports of their own "
+                    "size\")");
     app->add_option("--write-skeleton", options.construction_skeleton, "write the skeleton the mesh is built on (OBJ)");
     if (!evolution) {
       add_word_option(app, "--stage", init.stage, construction_stage_words(),
@@ -195,6 +199,10 @@ struct FitCommand {
                     "robust mode, on a scan with normals, with the smoothing of turned faces: push vertices left deep "
                     "below the scan out first; the pushed fit is kept where it turns no more area against the scan "
                     "(on, off)");
+    add_word_option(app, "--reach-uncovered", e.reach_uncovered, on_off_words(),
+                    "robust mode: after the evolution, cloud points it left more than a sixth of epsilon from the "
+                    "mesh pull it; on a scan with normals the fit so reached is kept where the area it turns against "
+                    "the scan stays within the verdict's bound or grows not at all (on, off)");
     app->add_option("--iterations", e.iterations, "maximal number of iterations")->capture_default_str();
     app->add_option("--tolerance", e.tolerance,
                     "stop when the error level improves by less than this fraction (0 = never)")
@@ -457,8 +465,12 @@ int main(int argc, char** argv) {
   generate_app->add_option("--seed", shape_options.seed, "random seed")->capture_default_str();
   generate_app
       ->add_option("--angle", shape_options.angle_degrees,
-                   "y-fork: angle between the branches (0 = 60); fan: between neighbours (0 = 30); degrees")
+                   "y-fork: angle between the branches (0 = 60); fan: between neighbours (0 = 30); "
+                   "thin-branch: between the branch and the trunk (0 = 60); degrees")
       ->check(CLI::Range(0.0, 175.0))
+      ->capture_default_str();
+  generate_app->add_option("--branch-radius", shape_options.branch_radius, "thin-branch: the branch's radius (trunk 1)")
+      ->check(CLI::Range(0.05, 0.9))
       ->capture_default_str();
   generate_app->add_option("--arms", shape_options.arms, "star, planar-star: junction valence (3..16)")
       ->check(CLI::Range(3, 16))

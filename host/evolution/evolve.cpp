@@ -6,6 +6,7 @@
 
 #include "core/progress.h"
 #include "evolution/guarded_steps.h"
+#include "mesh/mesh_arrays.h"
 
 namespace mcquad {
 
@@ -82,6 +83,15 @@ EvolutionResult evolve(EvolutionBackend& backend, const MeshArrays& mesh, const 
   }
   result.positions = backend.positions();
   return result;
+}
+
+void settle_onto_cloud(EvolutionBackend& backend, const MeshArrays& start, const EvolutionParameters& parameters,
+                       QuadMesh& mesh, unsigned first_iteration, unsigned iterations) {
+  backend.set_positions(mesh_positions(mesh));
+  EvolutionParameters settle = parameters;
+  settle.iterations = iterations;
+  settle.tolerance = 0;
+  set_positions(mesh, evolve(backend, start, settle, {}, first_iteration).positions);
 }
 
 }  // namespace mcquad

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/quad_mesh.h"
 #include "evolution/evolution_backend.h"
 #include "evolution/evolution_parameters.h"
 
@@ -44,5 +45,12 @@ device::mcq_step_params make_step_params(const EvolutionParameters& parameters, 
 //! draws new rays.
 EvolutionResult evolve(EvolutionBackend& backend, const MeshArrays& mesh, const EvolutionParameters& parameters,
                        const IterationCallback& after_iteration = {}, unsigned first_iteration = 0);
+
+//! `iterations` more steps (no early stop) from `mesh`'s positions on the
+//! backend loaded with `start`, numbered from `first_iteration`; the mesh
+//! takes the result. After a move made outside the evolution (a smoothing,
+//! a push, a reach), so that what it lifted off the cloud settles back.
+void settle_onto_cloud(EvolutionBackend& backend, const MeshArrays& start, const EvolutionParameters& parameters,
+                       QuadMesh& mesh, unsigned first_iteration, unsigned iterations);
 
 }  // namespace mcquad

@@ -61,16 +61,6 @@ TurnedFaceSmoothing smooth_turned_faces(QuadMesh& mesh, const MeshArrays& start,
 
 namespace {
 
-//! kSettleIterations more evolution steps from the mesh's positions, numbered from `first_iteration`.
-void settle_onto_cloud(EvolutionBackend& backend, const MeshArrays& start, const EvolutionParameters& parameters,
-                       QuadMesh& mesh, unsigned first_iteration) {
-  backend.set_positions(mesh_positions(mesh));
-  EvolutionParameters settle = parameters;
-  settle.iterations = kSettleIterations;
-  settle.tolerance = 0;
-  set_positions(mesh, evolve(backend, start, settle, {}, first_iteration).positions);
-}
-
 //! Smoothing, settling, smoothing again (turn_faces_out without the push).
 TurnedFaceSmoothing smooth_and_settle(EvolutionBackend& backend, const MeshArrays& start,
                                       const EvolutionParameters& parameters, const ScanOrientation& scan,
@@ -78,18 +68,13 @@ TurnedFaceSmoothing smooth_and_settle(EvolutionBackend& backend, const MeshArray
   const int rounds = int(parameters.turned_face_rounds);
   TurnedFaceSmoothing result = smooth_turned_faces(mesh, start, scan, rounds);
   if (result.rounds == 0) return result;
-  settle_onto_cloud(backend, start, parameters, mesh, first_iteration);
+  settle_onto_cloud(backend, start, parameters, mesh, first_iteration, kSettleIterations);
   TurnedFaceSmoothing again = smooth_turned_faces(mesh, start, scan, rounds);
   result.settle_iterations = kSettleIterations;
   result.rounds += again.rounds;
   result.faces_after = again.faces_after;
   result.area_after = again.area_after;
   return result;
-}
-
-//! The share of the area turned against the scan, as the verdict counts it.
-double turned_area(const QuadMesh& mesh, const ScanOrientation& scan) {
-  return scan.inward_area_fraction(mesh, scan.inward_faces(mesh));
 }
 
 }  // namespace
@@ -106,10 +91,10 @@ TurnedFaceSmoothing turn_faces_out(EvolutionBackend& backend, const MeshArrays& 
                                              int(parameters.turned_face_rounds));
   plain.deep_push_rounds = push_rounds;
   if (push_rounds == 0) return plain;
-  settle_onto_cloud(backend, start, parameters, pushed, first_iteration);
+  settle_onto_cloud(backend, start, parameters, pushed, first_iteration, kSettleIterations);
   TurnedFaceSmoothing result =
       smooth_and_settle(backend, start, parameters, scan, pushed, first_iteration + kSettleIterations);
-  if (turned_area(pushed, scan) > turned_area(mesh, scan)) return plain;
+  if (scan.inward_area_fraction(pushed) > scan.inward_area_fraction(mesh)) return plain;
   result.faces_before = plain.faces_before;  // as the evolution left them, before the push
   result.area_before = plain.area_before;
   result.settle_iterations += kSettleIterations;

@@ -418,12 +418,19 @@ void parallel_tubes(ShapeBuilder& b) {
   b.tube(b.line(b.node(Vec(1.25, 0, -4)), Vec(1.25, 0, 4), 1.0), 1.0);
 }
 
-void thin_branch(ShapeBuilder& b) {
-  // A trunk of radius 1 with a branch of radius 0.2 leaving it at 60 degrees.
+void thin_branch(ShapeBuilder& b, double angle_degrees, double branch_radius) {
+  // A trunk of radius 1 with a thin branch leaving it (by default radius
+  // 0.2 at 60 degrees). Under 20 degrees the branch would run inside the
+  // trunk for most of its length.
+  if (!(branch_radius >= 0.05 && branch_radius <= 0.9))
+    throw InputError("thin-branch: the branch radius must be between 0.05 and 0.9 (the trunk's is 1)");
+  if (!(angle_degrees >= 20 && angle_degrees <= 160))
+    throw InputError("thin-branch: the angle must be between 20 and 160 degrees");
+  const double angle = angle_degrees * M_PI / 180.0;
   int junction = b.node(Vec(0, 0, 0));
   b.tube(b.line(junction, Vec(0, -5, 0), 1.0), 1.0);
   b.tube(b.line(junction, Vec(0, 5, 0), 1.0), 1.0);
-  b.tube(b.line(junction, 5.0 * Vec(std::sin(M_PI / 3), std::cos(M_PI / 3), 0), 0.5), 0.2);
+  b.tube(b.line(junction, 5.0 * Vec(std::sin(angle), std::cos(angle), 0), 0.5), branch_radius);
 }
 
 //! Issue 14's fat body: a body of radius 2.5 whose bone's ends are
@@ -596,7 +603,8 @@ std::vector<std::pair<std::string, std::string>> shape_catalogue() {
           {"double-junction", "two junctions of valence 4 a short bone apart"},
           {"theta", "two junctions joined by three chains"},
           {"parallel-tubes", "two capped tubes whose surfaces pass half a radius apart"},
-          {"thin-branch", "a trunk with a branch a fifth of its radius"},
+          {"thin-branch",
+           "a trunk with a thin branch: --branch-radius (default 0.2, the trunk 1) at --angle degrees (default 60)"},
           {"tight-knot", "a knot whose tube passes within one radius of itself"},
           {"blob-limbs", "a fat body with junctions deep inside it, thin legs, a neck, a tail and an ear with no bone"},
           {"ladder", "two rails joined by four rungs: three holes narrower than the tubes (a pierced slab)"},
@@ -638,7 +646,7 @@ GeneratedShape generate_shape(const std::string& name, const ShapeOptions& optio
   else if (name == "parallel-tubes")
     parallel_tubes(b);
   else if (name == "thin-branch")
-    thin_branch(b);
+    thin_branch(b, options.angle_degrees > 0 ? options.angle_degrees : 60.0, options.branch_radius);
   else if (name == "tight-knot")
     tight_knot(b);
   else if (name == "blob-limbs")

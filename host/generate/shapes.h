@@ -13,8 +13,10 @@ struct ShapeOptions {
   size_t points = 0;  //!< 0 = the shape's default count
   double noise = 0;   //!< standard deviation along the normal, as a fraction of the tube radius
   uint64_t seed = 1;
-  double angle_degrees = 0;  //!< y-fork: angle between the two branches (0 = 60); fan: between neighbours (0 = 30)
-  int arms = 4;              //!< star, planar-star: valence of the junction (3..16)
+  double angle_degrees = 0;    //!< y-fork: angle between the two branches (0 = 60); fan: between neighbours (0 = 30);
+                               //!< thin-branch: between the branch and the trunk (0 = 60)
+  double branch_radius = 0.2;  //!< thin-branch: the branch's radius, the trunk's being 1
+  int arms = 4;                //!< star, planar-star: valence of the junction (3..16)
   // Scan defects (issue 6's cases):
   double outliers = 0;       //!< fraction of the points replaced by outliers at least a radius off the surface
   double density_ratio = 1;  //!< density falls linearly along x from 1 to 1/ratio (10 = tenfold)

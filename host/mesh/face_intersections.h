@@ -13,6 +13,10 @@ namespace mcquad {
 //! Whether two triangles intersect (an edge of one crosses the other).
 bool triangles_intersect(const Eigen::Vector3d* a, const Eigen::Vector3d* b);
 
+//! The point of triangle (t0, t1, t2) nearest to p.
+Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& t0,
+                                          const Eigen::Vector3d& t1, const Eigen::Vector3d& t2);
+
 //! Distance from p to triangle (t0, t1, t2).
 double point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& t0, const Eigen::Vector3d& t1,
                                const Eigen::Vector3d& t2);

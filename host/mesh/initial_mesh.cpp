@@ -20,6 +20,7 @@
 #include "mesh/face_intersections.h"
 #include "mesh/folds.h"
 #include "mesh/frames.h"
+#include "mesh/inset_port.h"
 #include "mesh/junction_block.h"
 #include "mesh/junction_inflation.h"
 #include "mesh/mesh_arrays.h"
@@ -67,6 +68,11 @@ std::string node_name(const SkeletonGraph& graph, int node) {
 //! its bones fit one (kCubeFitDegrees), or the cube wherever it can be built.
 enum class BlockPreference { kFitted, kCube };
 
+//! A junction's bones sized by their first bone's radius, or by their
+//! limb's at its root (limb_root_radius): a thin branch's first bone
+//! measures its trunk.
+enum class LimbSizing { kFirstBone, kRoot };
+
 class MeshAssembler {
  public:
   MeshAssembler(const TubeSkeleton& skeleton, const PointCloud& cloud, const PointIndex<float>& cloud_index,
@@ -85,49 +91,102 @@ class MeshAssembler {
     bool preference_mattered = false;
     for (size_t node = 0; node < graph_.node_count(); ++node) {
       if (graph_.kind(int(node)) != NodeKind::kJunction) continue;
-      const Eigen::Vector3d& center = graph_.positions[node];
-      const double fraction = block_fraction(int(node));
-      const JunctionBones bones = junction_bones(int(node), fraction);
-      // Where the bones fit a cube's faces (every bone near its own face's
-      // normal), the cube block: measured on the existing shapes, it is the
-      // better one there. Otherwise the general block (junction_layout.h):
-      // any valence, any directions.
-      std::vector<Port> ports;
-      const double size = block_size(bones);
-      BlockOrientation cube;
-      bool cube_fits = bones.directions.size() <= 6;
-      if (cube_fits) {
-        cube = orient_cube_block(bones.directions);
-        double fit = bones.directions.size() >= 5 ? kCubeFitDegrees : kCubeFitDegreesBelowFive;
-        cube_fits = preference == BlockPreference::kCube || cube.worst_cosine >= std::cos(fit * M_PI / 180.0);
-        preference_mattered = preference_mattered || !cube_fits;
-      }
-      // Where tubes overlap, the cloud can be thinner around the node than
-      // any bone's radius (below a moved crotch): each block vertex stays
-      // at the block's fraction of the way to the cloud in its direction.
-      auto reach = [&](const Eigen::Vector3d& direction, double wanted) {
-        return fraction * probe_.distance_along(center, direction, wanted / fraction);
-      };
-      if (cube_fits) {
-        ports = add_cube_block(
-            soup_, center, size, cube, [&](const Eigen::Vector3d& d) { return reach(d, size); }, closed);
-      } else {
-        JunctionLayout layout;
-        try {
-          layout = layout_junction(bones.directions, bones.tube_radii);
-        } catch (const UnsupportedError& e) {
-          throw UnsupportedError(source_ + ": " + node_name(graph_, int(node)) + ": " + e.what());
+      const QuadSoup::Size before = soup_.size();
+      Block block = add_block(int(node), closed, preference, LimbSizing::kFirstBone, preference_mattered);
+      if (options_.limb_ports && !closed && !limbs_to_inset(int(node), block).empty()) {
+        // A limb far thinner than its port (a thin branch off a trunk): the
+        // block is built again with its limbs' radii at their roots, which
+        // also lets it grow to the block fraction (the limb no longer looks
+        // as if it narrowed), and that block is kept only where a port is
+        // still too wide, and gets an inset. Rebuilt at every junction, the
+        // blocks moved where nothing was inset (the hand's fits turned twice
+        // the area; docs/HARD_CASES.md, "Seven changes tried and not kept",
+        // item 6).
+        soup_.truncate(before);
+        block = add_block(int(node), closed, preference, LimbSizing::kRoot, preference_mattered);
+        const std::vector<size_t> inset = limbs_to_inset(int(node), block);
+        if (inset.empty()) {
+          soup_.truncate(before);
+          block = add_block(int(node), closed, preference, LimbSizing::kFirstBone, preference_mattered);
         }
-        ports = add_junction_block(soup_, center, layout, bones, reach, closed, options_.block_edges);
+        inset_ports_ += int(inset.size());
+        for (size_t k : inset)
+          block.ports[k] = inset_port(soup_, block.ports[k], graph_.positions[node], block.bones.directions[k],
+                                      block.bones.tube_radii[k]);
       }
       const auto& neighbours = graph_.neighbours[node];
-      for (size_t k = 0; k < ports.size(); ++k) {
-        ports_[{int(node), neighbours[k]}] = ports[k];
+      for (size_t k = 0; k < block.ports.size(); ++k) {
+        ports_[{int(node), neighbours[k]}] = block.ports[k];
         blend_length_[{int(node), neighbours[k]}] =
-            blend_length(int(node), int(k), bones.directions, ports[k], size, fraction);
+            blend_length(int(node), int(k), block.bones.directions, block.ports[k], block.size, block.fraction);
       }
     }
     return preference_mattered;
+  }
+
+  //! A junction's block as added to the soup.
+  struct Block {
+    double fraction = 0;  //!< of the way to the cloud
+    double size = 0;
+    JunctionBones bones;
+    std::vector<Port> ports;  //!< one per bone, in the node's neighbour order
+  };
+
+  Block add_block(int node, bool closed, BlockPreference preference, LimbSizing sizing, bool& preference_mattered) {
+    const Eigen::Vector3d& center = graph_.positions[size_t(node)];
+    Block block;
+    block.fraction = block_fraction(node, sizing);
+    block.bones = junction_bones(node, block.fraction, sizing);
+    block.size = block_size(block.bones);
+    const JunctionBones& bones = block.bones;
+    // Where the bones fit a cube's faces (every bone near its own face's
+    // normal), the cube block: measured on the existing shapes, it is the
+    // better one there. Otherwise the general block (junction_layout.h):
+    // any valence, any directions.
+    BlockOrientation cube;
+    bool cube_fits = bones.directions.size() <= 6;
+    if (cube_fits) {
+      cube = orient_cube_block(bones.directions);
+      double fit = bones.directions.size() >= 5 ? kCubeFitDegrees : kCubeFitDegreesBelowFive;
+      cube_fits = preference == BlockPreference::kCube || cube.worst_cosine >= std::cos(fit * M_PI / 180.0);
+      preference_mattered = preference_mattered || !cube_fits;
+    }
+    // Where tubes overlap, the cloud can be thinner around the node than
+    // any bone's radius (below a moved crotch): each block vertex stays
+    // at the block's fraction of the way to the cloud in its direction.
+    auto reach = [&](const Eigen::Vector3d& direction, double wanted) {
+      return block.fraction * probe_.distance_along(center, direction, wanted / block.fraction);
+    };
+    if (cube_fits) {
+      block.ports = add_cube_block(
+          soup_, center, block.size, cube, [&](const Eigen::Vector3d& d) { return reach(d, block.size); }, closed);
+      return block;
+    }
+    JunctionLayout layout;
+    try {
+      layout = layout_junction(bones.directions, bones.tube_radii);
+    } catch (const UnsupportedError& e) {
+      throw UnsupportedError(source_ + ": " + node_name(graph_, node) + ": " + e.what());
+    }
+    block.ports = add_junction_block(soup_, center, layout, bones, reach, closed, options_.block_edges);
+    return block;
+  }
+
+  //! The bones of `block` whose port is more than kInsetPortRatio times as
+  //! wide as their limb's root (limb_root_radius, at the block's fraction),
+  //! and that leave their port within kInsetLeastCosine of its normal: the
+  //! inset lies in the port's plane, and a tube that bends from it at once
+  //! folded (a branch at 45 degrees to its trunk, 43 degrees off its port's
+  //! normal: a plug at its root, docs/HARD_CASES.md, "Thin limbs get ports of
+  //! their own size").
+  std::vector<size_t> limbs_to_inset(int node, const Block& block) const {
+    std::vector<size_t> inset;
+    const auto& neighbours = graph_.neighbours[size_t(node)];
+    for (size_t k = 0; k < block.ports.size(); ++k)
+      if (block.bones.directions[k].dot(block.ports[k].outward) >= kInsetLeastCosine &&
+          block.ports[k].radius > kInsetPortRatio * block.fraction * limb_root_radius(node, neighbours[k]))
+        inset.push_back(k);
+    return inset;
   }
 
   void build_chains() {
@@ -142,6 +201,7 @@ class MeshAssembler {
   QuadSoup& soup() { return soup_; }
 
   int open_ends() const { return open_ends_; }
+  int inset_ports() const { return inset_ports_; }
   const CloudProbe& probe() const { return probe_; }
 
  private:
@@ -156,14 +216,80 @@ class MeshAssembler {
     return fraction * skeleton_.node_radius[node];
   }
 
-  //! The directions of a junction's bones and their tubes' radii at `fraction`.
-  JunctionBones junction_bones(int node, double fraction) const {
+  //! The directions of a junction's bones and their tubes' radii at
+  //! `fraction`: each bone's own, or with LimbSizing::kRoot its limb's at
+  //! its root (limb_root_radius).
+  JunctionBones junction_bones(int node, double fraction, LimbSizing sizing = LimbSizing::kFirstBone) const {
     JunctionBones bones;
     for (int next : graph_.neighbours[size_t(node)]) {
       bones.directions.push_back((graph_.positions[size_t(next)] - graph_.positions[size_t(node)]).normalized());
-      bones.tube_radii.push_back(tube_radius(node, next, fraction));
+      bones.tube_radii.push_back(sizing == LimbSizing::kRoot ? fraction * limb_root_radius(node, next)
+                                                             : tube_radius(node, next, fraction));
     }
     return bones;
+  }
+
+  //! The radius of the limb from junction `node` through `next` at its
+  //! root: its first bone's, unless limb_radius finds that bone fat (it took
+  //! the points of the tube the junction sits in). Then it is measured in
+  //! the cloud just past where the chain leaves the tubes of the junction's
+  //! other bones (root_of_limb): the median distance to the cloud of kRing
+  //! rays across it. Not the chain's median radius: a limb that tapers (the
+  //! armadillo's tail, bones 0.097, 0.054, 0.029, 0.024, 0.019) is thicker
+  //! at its root than along most of its length; nor its second bone's: the
+  //! generated thin branch's second bone still measures its trunk (0.77 of
+  //! it, the branch 0.2).
+  double limb_root_radius(int node, int next) const {
+    const std::vector<double> radii = chain_radii(node, next);
+    if (limb_radius(radii) == radii.front()) return radii.front();
+    std::vector<Eigen::Vector3d> line;
+    for (int c : graph_.chain_from(node, next)) line.push_back(graph_.positions[size_t(c)]);
+    const double root = root_of_limb(node, next, line);
+    if (root <= 0) return radii.front();
+    const auto [at, tangent] = point_at(line, root);
+    const Eigen::Vector3d u = any_perpendicular(tangent), v = tangent.cross(u);
+    std::array<double, kRing> distance;
+    for (int i = 0; i < kRing; ++i) {
+      const double angle = 2.0 * M_PI * i / kRing;
+      distance[size_t(i)] = probe_.distance_along(at, std::cos(angle) * u + std::sin(angle) * v, 2.0 * radii.front());
+    }
+    std::nth_element(distance.begin(), distance.begin() + kRing / 2, distance.end());
+    return std::min(distance[kRing / 2], radii.front());
+  }
+
+  //! Arc length along `line` (the chain from `node` through `next`) a tenth
+  //! past where it leaves the tubes of the node's other bones
+  //! (inside_another_tube); 0 if it never does. Not a fixed distance: a
+  //! branch at 45 degrees to a trunk leaves it 1.41 trunk radii out, at 90
+  //! degrees 1.
+  double root_of_limb(int node, int next, const std::vector<Eigen::Vector3d>& line) const {
+    const double length = polyline_length(line), step = 0.05 * tube_radius(node, next, 1.0);
+    for (double s = step; s <= length; s += step)
+      if (!inside_another_tube(node, next, point_at(line, s).first)) return std::min(1.1 * s, length);
+    return 0;
+  }
+
+  //! Whether `p` lies inside the tube of a bone of junction `node` other than
+  //! the one toward `next`: each a half-line from the node with its first
+  //! bone's radius in the cloud.
+  bool inside_another_tube(int node, int next, const Eigen::Vector3d& p) const {
+    const Eigen::Vector3d& center = graph_.positions[size_t(node)];
+    for (int other : graph_.neighbours[size_t(node)]) {
+      if (other == next) continue;
+      const Eigen::Vector3d axis = (graph_.positions[size_t(other)] - center).normalized();
+      const Eigen::Vector3d offset = p - center;
+      const double along = std::max(0.0, offset.dot(axis));
+      if ((offset - along * axis).norm() < tube_radius(node, other, 1.0)) return true;
+    }
+    return false;
+  }
+
+  //! The bone radii along the chain from junction `node` through `next`.
+  std::vector<double> chain_radii(int node, int next) const {
+    const std::vector<int> chain = graph_.chain_from(node, next);
+    std::vector<double> radii;
+    for (size_t k = 0; k + 1 < chain.size(); ++k) radii.push_back(tube_radius(chain[k], chain[k + 1], 1.0));
+    return radii;
   }
 
   static double block_size(const JunctionBones& bones) {
@@ -181,10 +307,10 @@ class MeshAssembler {
   //! less than kLeastLimbNarrowing of its first bone's radius (a thin branch
   //! off a trunk, whose first bone takes the trunk's radius: its port stood
   //! out of the trunk's wall). The start fraction there.
-  double block_fraction(int node) const {
+  double block_fraction(int node, LimbSizing sizing = LimbSizing::kFirstBone) const {
     const double grown = std::max(options_.block_fraction, options_.start_fraction);
     if (grown == options_.start_fraction) return grown;
-    const JunctionBones bones = junction_bones(node, grown);
+    const JunctionBones bones = junction_bones(node, grown, sizing);
     const double size = block_size(bones);
     const auto& neighbours = graph_.neighbours[size_t(node)];
     for (size_t k = 0; k < neighbours.size(); ++k) {
@@ -555,6 +681,7 @@ class MeshAssembler {
   std::map<std::pair<int, int>, Port> ports_;
   std::map<std::pair<int, int>, double> blend_length_;
   int open_ends_ = 0;
+  int inset_ports_ = 0;
 };
 
 QuadMesh to_openmesh(const QuadSoup& soup, const std::string& source) {
@@ -685,12 +812,15 @@ InitialMesh build_initial_mesh(const SkeletonGraph& graph, const BoneAssignment&
   // to stand nearer the cloud or to turn toward a crotch (the 60-degree Y's
   // crotch crossed itself, 7 pairs, and a node of the octopus fell outside
   // its mesh; with the edges on the bisector, 23 pairs); refined, they are
-  // smoothed apart.
+  // smoothed apart. No port is inset either: at the start fraction the thin
+  // branch's inset lay inside the trunk, and a node of the branch outside
+  // its mesh.
   if (options.stage == ConstructionStage::kRefined &&
-      (used.block_fraction > used.start_fraction || used.block_edges != BlockEdges::kMidway) &&
+      (used.block_fraction > used.start_fraction || used.block_edges != BlockEdges::kMidway || used.limb_ports) &&
       refinement_levels(coarse.result.mesh, options) == 0) {
     used.block_fraction = used.start_fraction;
     used.block_edges = BlockEdges::kMidway;
+    used.limb_ports = false;
     coarse = assemble_coarse_mesh(skeleton, cloud, *cloud_index, used, source, BlockPreference::kFitted);
   }
   if (coarse.preference_mattered && options.stage == ConstructionStage::kRefined) {
@@ -798,6 +928,7 @@ CoarseMesh assemble_coarse_mesh(const TubeSkeleton& skeleton, const PointCloud& 
   coarse.result.mesh = to_openmesh(assembler.soup(), source);
   coarse.result.skeleton = skeleton;
   coarse.result.open_ends = assembler.open_ends();
+  coarse.result.inset_ports = assembler.inset_ports();
   coarse.result.irregular_allowed = assembler.soup().irregular_allowed;
   return coarse;
 }

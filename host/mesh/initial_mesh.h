@@ -31,6 +31,14 @@ struct InitialMeshOptions {
   //! Midway on an unrefined mesh, whose blocks stay at the start fraction
   //! too (build_initial_mesh), and in the paper's mode.
   BlockEdges block_edges = BlockEdges::kAcuteToCrotch;
+  //! A limb whose port is over kInsetPortRatio times as wide as its root
+  //! (a thin branch off a trunk, whose first bone measured the trunk) gets a
+  //! port of its own size inset in it (mesh/inset_port.h), on a block built
+  //! with its limbs' radii at their roots. Off by default: on the armadillo
+  //! scan it insets the tail and leaves more of the torso uncovered
+  //! (docs/HARD_CASES.md, "Thin limbs get ports of their own size"); off in
+  //! the paper's mode.
+  bool limb_ports = false;
   EndMode ends = EndMode::kAuto;  //!< open/capped ends; auto decides from the cloud
   double resolution = 0;          //!< target edge length; 0 = auto (16 vertices around a tube)
   size_t target_vertices = 0;     //!< alternatively, refine until at least this many vertices
@@ -50,6 +58,7 @@ struct InitialMeshOptions {
 struct InitialMesh {
   QuadMesh mesh;
   int open_ends = 0;
+  int inset_ports = 0;                  //!< limbs given a port of their own size (InitialMeshOptions::limb_ports)
   int refinement_levels = 0;            //!< Catmull-Clark levels this mesh has
   int finer_levels = 0;                 //!< with coarse_first: levels asked for beyond refinement_levels
   std::vector<bool> irregular_allowed;  //!< per vertex: on a junction block or a cap

@@ -13,6 +13,18 @@ struct QuadSoup {
   std::vector<std::array<int, 4>> quads;
   std::vector<bool> irregular_allowed;  //!< per vertex: on a junction block or a cap
 
+  //! How much the soup holds, to go back to (truncate).
+  struct Size {
+    size_t vertices = 0, quads = 0;
+  };
+  Size size() const { return {vertices.size(), quads.size()}; }
+  //! Drops what was added after `size()` gave `to`.
+  void truncate(const Size& to) {
+    vertices.resize(to.vertices);
+    irregular_allowed.resize(to.vertices);
+    quads.resize(to.quads);
+  }
+
   int add_vertex(const Eigen::Vector3d& p, bool on_block_or_cap = false) {
     vertices.push_back(p);
     irregular_allowed.push_back(on_block_or_cap);

@@ -44,6 +44,9 @@ class ScanOrientation {
   //! The share of the mesh's area facing against the scan: the turned
   //! triangles of `faces` (what inward_faces returns).
   double inward_area_fraction(const QuadMesh& mesh, const std::vector<int>& faces) const;
+  //! The same of all the faces that face inward: the share of the mesh's
+  //! area turned against the scan, as the verdict counts it.
+  double inward_area_fraction(const QuadMesh& mesh) const { return inward_area_fraction(mesh, inward_faces(mesh)); }
 
   //! How far `p` lies below the scan: from p to the oriented point nearest
   //! it, along that point's normal (negative above the scan; 0 where the

@@ -1,5 +1,6 @@
 #include "pipeline/fit.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -61,15 +62,26 @@ std::future<std::unique_ptr<EvolutionBackend>> start_opencl_backend(const FitOpt
 constexpr const char* kBackendSetupStage = "backend_setup";
 constexpr const char* kUploadStage = "upload";
 constexpr const char* kEvolutionStage = "evolution";
+constexpr const char* kReachStage = "reach_uncovered";
 constexpr const char* kTurnedFacesStage = "turned_faces";
-constexpr const char* kEvolutionStages[] = {kBackendSetupStage, kUploadStage, kEvolutionStage, kTurnedFacesStage};
+constexpr const char* kEvolutionStages[] = {kBackendSetupStage, kUploadStage, kEvolutionStage, kReachStage,
+                                            kTurnedFacesStage};
 
 //! Runs the evolution on the prepared setup and leaves its positions in
 //! `mesh`; its stages are timed as `stage_prefix` + the stage's name. The
 //! backend is `early_backend`'s when it holds one (taken), else made here.
+//! In robust mode the cloud the evolution left uncovered is then reached
+//! for (evolution/uncovered_reach.h) and the faces turned against the scan
+//! smoothed (turned_face_smoothing.h); on a scan with normals the fit so
+//! reached is kept where, smoothed, the area it turns against them stays
+//! within the verdict's bound or no larger than the fit's without the reach,
+//! smoothed: on the real armadillo and elephant the reach covered more but
+//! turned more. `unsmoothed`, if given, gets the kept fit before its
+//! smoothing.
 FitReport::Evolution evolve_mesh(EvolutionSetup& setup, const FitOptions& options,
-                                 const EvolutionParameters& parameters, const ScanOrientation& scan, QuadMesh& mesh,
-                                 StageTimer& timer, std::future<std::unique_ptr<EvolutionBackend>>& early_backend,
+                                 const EvolutionParameters& parameters, const ScanOrientation& scan,
+                                 const PointCloud& cloud, QuadMesh& mesh, StageTimer& timer,
+                                 std::future<std::unique_ptr<EvolutionBackend>>& early_backend,
                                  const std::string& stage_prefix = "", QuadMesh* unsmoothed = nullptr) {
   auto backend = timer.run(stage_prefix + kBackendSetupStage, [&] {
     std::unique_ptr<EvolutionBackend> early = early_backend.valid() ? early_backend.get() : nullptr;
@@ -91,12 +103,40 @@ FitReport::Evolution evolve_mesh(EvolutionSetup& setup, const FitOptions& option
   report.initial_error_level = evolution.initial_error_level;
   report.iterations = std::move(evolution.iterations);
   report.stop_reason = evolution.stop_reason;
-  if (parameters.mode == EvolutionParameters::Mode::kRobust && parameters.turned_face_rounds > 0 && !scan.empty()) {
-    if (unsmoothed) *unsmoothed = mesh;
-    report.turned_faces = timer.run(stage_prefix + kTurnedFacesStage, [&] {
-      return turn_faces_out(*backend, setup.arrays, parameters, scan, mesh, unsigned(report.iterations.size()));
+  const bool robust = parameters.mode == EvolutionParameters::Mode::kRobust;
+  unsigned next_iteration = unsigned(report.iterations.size());
+  std::optional<QuadMesh> reached;
+  if (robust && parameters.reach_uncovered && parameters.iterations > 0) {
+    reached = mesh;
+    report.uncovered_reach = timer.run(stage_prefix + kReachStage, [&] {
+      return reach_uncovered_cloud(*backend, setup.arrays, parameters, cloud, *reached, next_iteration);
     });
+    if (report.uncovered_reach->rounds == 0) reached.reset();
   }
+  const bool smooth = robust && parameters.turned_face_rounds > 0 && !scan.empty();
+  if (!smooth) {
+    if (reached) {
+      mesh = std::move(*reached);
+      report.uncovered_reach->kept = true;
+    }
+    if (unsmoothed) *unsmoothed = mesh;
+    return report;
+  }
+  report.turned_faces = timer.run(stage_prefix + kTurnedFacesStage, [&] {
+    if (unsmoothed) *unsmoothed = mesh;
+    TurnedFaceSmoothing plain = turn_faces_out(*backend, setup.arrays, parameters, scan, mesh, next_iteration);
+    if (!reached) return plain;
+    const QuadMesh reached_unsmoothed = *reached;
+    TurnedFaceSmoothing smoothed = turn_faces_out(*backend, setup.arrays, parameters, scan, *reached,
+                                                  next_iteration + report.uncovered_reach->settle_iterations);
+    // The reach may turn more only where the verdict's inward check still passes.
+    const double allowed = std::max(scan.inward_area_fraction(mesh), VerdictThresholds().inward_area_fraction);
+    if (scan.inward_area_fraction(*reached) > allowed) return plain;
+    mesh = std::move(*reached);
+    if (unsmoothed) *unsmoothed = reached_unsmoothed;
+    report.uncovered_reach->kept = true;
+    return smoothed;
+  });
   return report;
 }
 
@@ -289,14 +329,14 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
   report.parameters = {options, parameters.epsilon, setup.median_radius,
                        cell_leaf_size(options.leaf_size, cloud.size())};
   report.initial_mesh = {setup.initial.open_ends, setup.initial.refinement_levels, mesh_statistics(result.mesh),
-                         setup.initial.finer_levels};
+                         setup.initial.finer_levels, setup.initial.inset_ports};
   if (setup.cells.cell_count() > 0)
     report.cells = FitReport::Cells{setup.cells.cell_count(), setup.cells.node_count(), setup.cells.depth,
                                     double(setup.cells.byte_size()) / 1e6, facing_fraction(setup.cells)};
   QuadMesh unsmoothed;
   if (options.evolve && setup.initial.finer_levels > 0) {
-    report.coarse_evolution =
-        evolve_mesh(setup, options, parameters, *scan, result.mesh, timer, early_backend, "coarse_", &unsmoothed);
+    report.coarse_evolution = evolve_mesh(setup, options, parameters, *scan, cloud, result.mesh, timer, early_backend,
+                                          "coarse_", &unsmoothed);
     refine_evolved_mesh(setup, result.mesh, unsmoothed, *report.coarse_evolution, setup.initial.finer_levels, timer);
   }
   // At the default resolution, a mesh that leaves the cloud uncovered by
@@ -311,7 +351,7 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
   refined_parameters.curvature_at_start = true;
   if (options.evolve)
     report.evolution = evolve_mesh(setup, options, report.coarse_evolution ? refined_parameters : parameters, *scan,
-                                   result.mesh, timer, early_backend, "", may_refine ? &unsmoothed : nullptr);
+                                   cloud, result.mesh, timer, early_backend, "", may_refine ? &unsmoothed : nullptr);
   auto measure = [&](const std::string& stage) {
     report.metrics = timer.run(stage, [&] { return measure_quality(result.mesh, cloud, setup.cells, &graph, &*scan); });
     report.verdict = judge_mesh(*report.metrics, setup.median_radius, setup.initial.open_ends);
@@ -323,7 +363,8 @@ FitResult fit_loaded(FitInput input, const FitOptions& options, StageTimer& time
       timer.rename("metrics", "coarse_metrics");
       report.coarse_evolution = std::move(report.evolution);
       refine_evolved_mesh(setup, result.mesh, unsmoothed, *report.coarse_evolution, 1, timer);
-      report.evolution = evolve_mesh(setup, options, refined_parameters, *scan, result.mesh, timer, early_backend);
+      report.evolution =
+          evolve_mesh(setup, options, refined_parameters, *scan, cloud, result.mesh, timer, early_backend);
       measure("metrics");
     });
   }

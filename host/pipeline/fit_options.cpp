@@ -51,6 +51,7 @@ InitialMeshOptions effective_initial_options(const FitOptions& options) {
     initial.junction_inflation = 0;
     initial.block_fraction = initial.start_fraction;
     initial.block_edges = BlockEdges::kMidway;
+    initial.limb_ports = false;
   }
   return initial;
 }

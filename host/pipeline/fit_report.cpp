@@ -25,6 +25,7 @@ nlohmann::json to_json(const FitReport::Parameters& p) {
           {"coarse_to_fine", robust && e.coarse_to_fine},
           {"refine_uncovered", robust && e.refine_uncovered},
           {"push_deep", robust && e.push_deep},
+          {"reach_uncovered", robust && e.reach_uncovered},
           {"turned_face_rounds", robust ? e.turned_face_rounds : 0u},
           {"cones", e.cones},
           {"generators", e.generators},
@@ -44,6 +45,7 @@ nlohmann::json to_json(const FitReport::Parameters& p) {
           {"ends", word_of(o.initial.ends, end_mode_words())},
           {"min_junction_angle_degrees", o.initial.min_junction_angle * 180.0 / M_PI},
           {"junction_inflation", effective_initial_options(o).junction_inflation},
+          {"limb_ports", effective_initial_options(o).limb_ports},
           {"median_radius", p.median_radius}};
 }
 
@@ -72,6 +74,13 @@ nlohmann::json to_json(const FitReport::Evolution& e) {
                          {"undone_for_crossings", e.turned_faces->undone_for_crossings},
                          {"deep_push_rounds", e.turned_faces->deep_push_rounds},
                          {"deep_push_kept", e.turned_faces->deep_push_kept}};
+  if (e.uncovered_reach)
+    j["uncovered_reach"] = {{"rounds", e.uncovered_reach->rounds},
+                            {"vertices_moved", e.uncovered_reach->vertices_moved},
+                            {"uncovered_points_before", e.uncovered_reach->uncovered_before},
+                            {"uncovered_points_after", e.uncovered_reach->uncovered_after},
+                            {"settle_iterations", e.uncovered_reach->settle_iterations},
+                            {"kept", e.uncovered_reach->kept}};
   return j;
 }
 
@@ -91,6 +100,7 @@ nlohmann::json to_json(const FitReport& r) {
   report["initial_mesh"] = {{"open_ends", r.initial_mesh.open_ends},
                             {"refinement_levels", r.initial_mesh.refinement_levels},
                             {"levels_after_coarse_evolution", r.initial_mesh.levels_after_coarse_evolution},
+                            {"inset_ports", r.initial_mesh.inset_ports},
                             {"statistics", to_json(r.initial_mesh.statistics)}};
   if (r.cells)
     report["cells"] = {{"cells", r.cells->cells},

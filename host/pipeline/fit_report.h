@@ -8,6 +8,7 @@
 
 #include "evolution/evolve.h"
 #include "evolution/turned_face_smoothing.h"
+#include "evolution/uncovered_reach.h"
 #include "metrics/mesh_metrics.h"
 #include "metrics/verdict.h"
 #include "pipeline/fit_options.h"
@@ -36,6 +37,7 @@ struct FitReport {
     MeshStatistics statistics;
     //! Coarse to fine: levels added after the evolution at this resolution.
     int levels_after_coarse_evolution = 0;
+    int inset_ports = 0;  //!< InitialMesh::inset_ports
   };
   //! Robust mode at the default resolution (pipeline/fit.cpp,
   //! refine_where_uncovered): the fit refined once where it left the cloud
@@ -61,6 +63,8 @@ struct FitReport {
     std::string stop_reason;
     //! Robust mode on a scan with normals: the faces turned against them, smoothed after the evolution.
     std::optional<TurnedFaceSmoothing> turned_faces;
+    //! Robust mode: the cloud left uncovered, pulled to after the evolution.
+    std::optional<UncoveredReach> uncovered_reach;
     double final_error_level() const {
       return iterations.empty() ? initial_error_level : iterations.back().error_level;
     }

@@ -36,18 +36,12 @@ struct EditableSkeleton {
 //! to count as having measured the body it starts in.
 constexpr double kFatFirstBone = 1.5;
 
-//! The radius of the limb along `chain` where it leaves its junction: its
-//! first bone's, unless that bone is far thicker than the rest of the chain
-//! (median of its bones' radii). Then the junction sits inside a fat body
-//! and the first bone took the body's points as its own (issue 14's
-//! blob-limbs: legs of radius 0.45 whose first bones measured 2.4); the
-//! limb's own radius is the chain's.
+//! limb_radius of the chain of nodes `chain`.
 double limb_radius(const EditableSkeleton& skeleton, const std::vector<int>& chain) {
   std::vector<double> radii;
   for (size_t k = 0; k + 1 < chain.size(); ++k)
     radii.push_back(skeleton.radius[size_t(skeleton.edge_between(chain[k], chain[k + 1]))]);
-  const double first = radii.front(), median = quantile_of(std::move(radii), 0.5);
-  return first > kFatFirstBone * median ? median : first;
+  return mcquad::limb_radius(std::move(radii));
 }
 
 double chain_length(const SkeletonGraph& graph, const std::vector<int>& chain) {
@@ -308,6 +302,12 @@ void widen_lobes(TubeSkeleton& result, const std::vector<MovedFork>& forks) {
 }
 
 }  // namespace
+
+double limb_radius(std::vector<double> chain_radii) {
+  if (chain_radii.empty()) return 0.0;
+  const double first = chain_radii.front(), median = quantile_of(std::move(chain_radii), 0.5);
+  return first > kFatFirstBone * median ? median : first;
+}
 
 std::vector<double> node_radii(const SkeletonGraph& graph, const std::vector<double>& bone_radius) {
   std::vector<double> sum(graph.node_count(), 0.0), smallest(graph.node_count(), INFINITY);

@@ -24,6 +24,16 @@ struct TubeSkeleton {
 TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssignment& bones, double min_angle,
                                     const std::string& source);
 
+//! The radius of a limb where it leaves its junction, from its chain's bone
+//! radii (the junction's bone first): the first bone's, unless that bone is
+//! far thicker than the rest of the chain (kFatFirstBone times the median).
+//! Then the junction sits inside a fatter tube and the first bone took that
+//! tube's points as its own (issue 14's blob-limbs: legs of radius 0.45
+//! whose first bones measured 2.4; the generated thin branch's first bone
+//! measures 0.96 of its trunk's radius, the rest 0.2): the limb's own radius
+//! is its chain's median.
+double limb_radius(std::vector<double> chain_radii);
+
 //! Node radii from bone radii: the mean of a node's bones, the smallest of
 //! them at a junction.
 std::vector<double> node_radii(const SkeletonGraph& graph, const std::vector<double>& bone_radius);

@@ -189,6 +189,7 @@ def fit(
     target_vertices: int = 0,
     min_junction_angle: float = 75.0,
     junction_inflation: float = 0.85,
+    limb_ports: bool = False,
     write_skeleton: str = "",
     backend: str = "auto",
     device: str = "",
@@ -209,6 +210,7 @@ def fit(
     curvature_correction: bool = True,
     turned_face_rounds: int = 20,
     push_deep: bool = True,
+    reach_uncovered: bool = True,
     iterations: int = 20,
     tolerance: float = 0.0,
     seed: int = 1,
@@ -246,6 +248,9 @@ def fit(
             acutely move to where the cloud's tubes part (0: never).
         junction_inflation: robust mode: the mesh round each junction moves this fraction of the way to the
             cloud along rays from its node before the evolution (0 to 0.95; 0: off).
+        limb_ports: robust mode: a limb whose junction face is over three times as wide as the limb at its root
+            (a thin branch off a trunk) starts from a face of its own size inset in that face (off by default:
+            it costs the armadillo scan coverage; docs/HARD_CASES.md).
         write_skeleton: write the skeleton the mesh is built on here (OBJ).
         backend: ``auto`` (OpenCL if a device exists), ``serial`` or ``opencl``.
         device: OpenCL device index or name (default: ``$MCQUAD_DEVICE``, else the first GPU, else the first device).
@@ -274,6 +279,9 @@ def fit(
             faces turned against the scan's normals after the evolution (0: off).
         push_deep: robust mode, on a scan with normals, with the smoothing of turned faces: push vertices left
             deep below the scan out first; the pushed fit is kept where it turns no more area against the scan.
+        reach_uncovered: robust mode: after the evolution, cloud points it left more than a sixth of epsilon
+            from the mesh pull it; on a scan with normals the fit so reached is kept where the area it turns
+            against them stays within the verdict's bound or grows not at all.
         iterations: maximal number of iterations.
         tolerance: stop when the error level improves by less than this fraction (0: never).
         seed: random seed; the same seed gives the same mesh, bit for bit, as ``mcquad fit --seed``.
@@ -360,6 +368,7 @@ def generate(
     noise: float = 0.0,
     seed: int = 1,
     angle: float = 0.0,
+    branch_radius: float = 0.2,
     arms: int = 4,
     outliers: float = 0.0,
     density_ratio: float = 1.0,

@@ -280,3 +280,19 @@ def test_deep_vertices_are_pushed_out_across_the_scans_holes(tmp_path):
     assert not np.array_equal(pushed.vertices, plain.vertices)
     inward = pushed.report["metrics"]["inward_area_fraction"], plain.report["metrics"]["inward_area_fraction"]
     assert inward[0] <= inward[1]
+
+
+def test_the_reach_for_the_uncovered_cloud_is_reported_and_can_be_turned_off(tmp_path):
+    """Robust mode pulls the mesh toward the cloud the evolution left uncovered (reach_uncovered):
+    the report says what was pulled and whether that fit was kept; reach_uncovered=False leaves it out."""
+    mcquad.generate("blob-limbs", tmp_path, points=20000, seed=1)
+    cloud, skeleton = tmp_path / "blob-limbs.ply", tmp_path / "blob-limbs.skeleton.obj"
+    reached = mcquad.fit(cloud, skeleton, backend="serial")
+    assert reached.report["parameters"]["reach_uncovered"] is True
+    reach = reached.report["evolution"]["uncovered_reach"]
+    assert reach["uncovered_points_before"] > 0
+    assert reach["rounds"] > 0
+    assert isinstance(reach["kept"], bool)
+    plain = mcquad.fit(cloud, skeleton, backend="serial", reach_uncovered=False)
+    assert plain.report["parameters"]["reach_uncovered"] is False
+    assert "uncovered_reach" not in plain.report["evolution"]

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "core/errors.h"
 #include "generate/shapes.h"
 #include "helpers.h"
 #include "io/point_cloud_io.h"
@@ -128,6 +129,28 @@ TEST(Generate, SkeletonOffCentreAndShortOfTheTips) {
   EXPECT_NEAR(reach(shortened, 0, -1), 3.0, 1e-9);
   EXPECT_NEAR(reach(shortened, 1, -1), 4.0, 1e-9);
   EXPECT_EQ(shortened.surface.capsules().size(), plain.surface.capsules().size());
+}
+
+//! The thin branch's radius and angle: the branch's capsule takes them, and
+//! values outside the shape's range are refused with the reason.
+TEST(Generate, ThinBranchTakesItsRadiusAndAngle) {
+  ShapeOptions options;
+  options.branch_radius = 0.3;
+  options.angle_degrees = 90;
+  GeneratedShape shape = test::small_shape("thin-branch", 5000, options);
+  double smallest = 1e9;
+  for (const auto& capsule : shape.surface.capsules()) smallest = std::min(smallest, capsule.radius);
+  EXPECT_NEAR(smallest, 0.3, 1e-12);
+  // At 90 degrees every node off the trunk's axis (x = 0) lies at y = 0.
+  for (const auto& p : shape.skeleton.nodes)
+    if (std::abs(p.x()) > 1e-9) {
+      EXPECT_NEAR(p.y(), 0.0, 1e-9) << p.transpose();
+    }
+  options.branch_radius = 1.5;
+  EXPECT_THROW(test::small_shape("thin-branch", 5000, options), InputError);
+  options.branch_radius = 0.2;
+  options.angle_degrees = 10;
+  EXPECT_THROW(test::small_shape("thin-branch", 5000, options), InputError);
 }
 
 //! issue 14's fat body: one bone fewer in the skeleton than capsules in the

@@ -431,5 +431,38 @@ TEST(InitialMesh, StagesStopEarly) {
   EXPECT_EQ(refined.mesh.n_faces(), extruded.mesh.n_faces() << (2 * refined.refinement_levels));
 }
 
+//! `--limb-ports on` (mesh/inset_port.h): the thin branch at 60 degrees, a
+//! fifth of its trunk's radius, starts from a port of its own size inset in
+//! its block's face; at 45 degrees the bone leaves its face 43 degrees off
+//! the face's normal and gets no inset (it folded into a plug there); a
+//! branch half the trunk's radius gets none either. The meshes stay all
+//! quads, 2-manifold, with the topology they had, and the inset's vertices
+//! are regular.
+TEST(LimbPorts, InsetOnlyAThinLimbLeavingItsFaceNearItsNormal) {
+  struct Case {
+    double angle, radius;
+    int inset;
+  };
+  for (const Case& c : {Case{60, 0.2, 1}, Case{45, 0.2, 0}, Case{60, 0.5, 0}}) {
+    ShapeOptions shape_options;
+    shape_options.angle_degrees = c.angle;
+    shape_options.branch_radius = c.radius;
+    const test::ShapeWithBones t("thin-branch", 40000, shape_options);
+    InitialMeshOptions options;
+    options.stage = ConstructionStage::kExtruded;
+    InitialMesh without = build_initial_mesh(t.graph, t.bones, t.shape.cloud, options, "thin-branch");
+    options.limb_ports = true;
+    InitialMesh with = build_initial_mesh(t.graph, t.bones, t.shape.cloud, options, "thin-branch");
+    EXPECT_EQ(without.inset_ports, 0);
+    EXPECT_EQ(with.inset_ports, c.inset) << c.angle << " degrees, r " << c.radius;
+    const MeshStatistics s = mesh_statistics(with.mesh), before = mesh_statistics(without.mesh);
+    EXPECT_EQ(s.quads, s.faces);
+    EXPECT_EQ(s.non_manifold_vertices, 0u);
+    EXPECT_EQ(s.boundary_loops, before.boundary_loops);
+    EXPECT_EQ(s.euler_characteristic, before.euler_characteristic);
+    EXPECT_EQ(s.irregular_vertices, before.irregular_vertices) << "the inset's vertices are regular";
+  }
+}
+
 }  // namespace
 }  // namespace mcquad

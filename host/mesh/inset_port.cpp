@@ -1,0 +1,44 @@
+#include "mesh/inset_port.h"
+
+namespace mcquad {
+namespace {
+
+//! Where the bone's axis crosses the port's plane, kept within half the
+//! port's radius of its centre: a bone that leaves nearly along its face
+//! (or is far off its centre) would put the inset ring past the port's.
+Eigen::Vector3d inset_center(const Port& port, const Eigen::Vector3d& node, const Eigen::Vector3d& direction) {
+  constexpr double kLeastCosine = 0.2;  // about 78 degrees off the port's normal
+  const double along = direction.dot(port.outward);
+  if (along < kLeastCosine) return port.center;
+  const Eigen::Vector3d crossing = node + direction * ((port.center - node).dot(port.outward) / along);
+  const Eigen::Vector3d offset = crossing - port.center;
+  const double farthest = 0.5 * port.radius;
+  return offset.norm() <= farthest ? crossing : Eigen::Vector3d(port.center + farthest * offset.normalized());
+}
+
+}  // namespace
+
+Port inset_port(QuadSoup& soup, const Port& port, const Eigen::Vector3d& node, const Eigen::Vector3d& direction,
+                double radius) {
+  const Eigen::Vector3d& normal = port.outward;
+  Port inner;
+  inner.center = inset_center(port, node, direction);
+  inner.outward = normal;
+  inner.radius = radius;
+  // Each inner vertex toward its outer one, in the port's plane, so the
+  // ring keeps the port's order and the band's quads their shape.
+  for (size_t k = 0; k < 8; ++k) {
+    Eigen::Vector3d toward = soup.vertices[size_t(port.ring[k])] - port.center;
+    toward -= toward.dot(normal) * normal;
+    inner.ring[k] = soup.add_vertex(inner.center + radius * toward.normalized(), true);
+  }
+  // Counter-clockwise seen from outside: the port's ring runs
+  // counter-clockwise about `normal`, the band from it inward.
+  for (size_t k = 0; k < 8; ++k) {
+    const size_t next = (k + 1) % 8;
+    soup.quads.push_back({port.ring[k], port.ring[next], inner.ring[next], inner.ring[k]});
+  }
+  return inner;
+}
+
+}  // namespace mcquad
