@@ -65,10 +65,10 @@ std::pair<double, long> TriangleNeighbourhoods::nearest(const Eigen::Vector3d& p
     const Neighbour& u = neighbours_[k];
     // A triangle nearer to p than `best` lies within to_hint + best of the
     // hint; the rest of the list lies farther.
-    if (u.gap * (1 - 1e-6) - 2 * slack >= to_hint + best) break;
+    if (u.gap * (1 - 1e-6) - 2 * slack > to_hint + best) break;
     if (TriangleTree::beyond(TriangleTree::box_distance2(tree_.box(size_t(u.triangle)), q), best, slack)) continue;
     double d = tree_.triangle_distance(p, size_t(u.triangle));
-    if (d < best) best = d, best_triangle = u.triangle;
+    if (TriangleTree::nearer(d, u.triangle, best, best_triangle)) best = d, best_triangle = u.triangle;
   }
   return {best, best_triangle};
 }

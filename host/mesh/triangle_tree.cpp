@@ -154,7 +154,7 @@ std::pair<double, long> TriangleTree::nearest(const Eigen::Vector3d& p, long hin
         size_t t = size_t(order_[size_t(k)]);
         if (beyond_best(box_distance(boxes_[t]))) continue;  // a float test spares most exact ones
         double d = triangle_distance(p, t);
-        if (d < best) best = d, best_triangle = long(t);
+        if (nearer(d, long(t), best, best_triangle)) best = d, best_triangle = long(t);
       }
       continue;
     }

@@ -29,9 +29,10 @@ class TriangleTree {
 
   //! The nearest triangle to `p` and the distance to it (exact: every
   //! triangle whose box is nearer than the best found so far is tested).
-  //! An empty tree answers (infinity, -1). `hint`, a triangle likely to be
-  //! near (the previous query's answer, for queries in spatial order), only
-  //! makes the search faster: the distance is the same.
+  //! An empty tree answers (infinity, -1). Of equally near triangles the
+  //! lowest index. `hint`, a triangle likely to be near (the previous
+  //! query's answer, for queries in spatial order), only makes the search
+  //! faster: the answer is the same.
   std::pair<double, long> nearest(const Eigen::Vector3d& p, long hint = -1) const;
 
   //! Calls `visit(t)` for every triangle t whose box overlaps `box`.
@@ -76,13 +77,21 @@ class TriangleTree {
   //! Boxes are floats rounded outward, but a query q is rounded too: a
   //! box's distance may come out a float's rounding over the truth. So a
   //! box counts as beyond `best` (exact) when sqrt(d2) (1 - 1e-6) - slack
-  //! >= best, with slack = 1e-6 |q|, compared squared (no square root per
+  //! > best, with slack = 1e-6 |q|, compared squared (no square root per
   //! box); box_distance2 gives d2 (1 - 1e-6)^2.
   static double box_distance2(const Box& box, const Eigen::Vector3f& q) {
     return double(box.squaredExteriorDistance(q)) * ((1 - 1e-6) * (1 - 1e-6));
   }
   static double rounding_slack(const Eigen::Vector3f& q) { return 1e-6 * double(q.norm()); }
-  static bool beyond(double box_d2, double best, double slack) { return box_d2 >= (best + slack) * (best + slack); }
+  static bool beyond(double box_d2, double best, double slack) { return box_d2 > (best + slack) * (best + slack); }
+  //! Whether triangle t at distance d is a better answer than best_triangle
+  //! at `best`: nearer, or as near with a lower index. A point beyond a
+  //! vertex is exactly as near every triangle around it; without the index
+  //! the one met first (by way of the hint) would win, and a caller's result
+  //! would follow how its queries were split among threads.
+  static bool nearer(double d, long t, double best, long best_triangle) {
+    return d < best || (d == best && t < best_triangle);
+  }
 
  private:
   //! A leaf holds order_[first, first + count); an inner node (count 0) has

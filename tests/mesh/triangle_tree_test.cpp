@@ -56,6 +56,42 @@ TEST(TriangleTree, NearestMatchesBruteForceNearAndFar) {
   }
 }
 
+//! Points above a flat grid's vertices, and beyond its corners, are exactly
+//! as near every triangle around the vertex: the tree, with any of them as
+//! the hint or none, and the neighbourhood lists, answer the lowest index
+//! (the reach for the uncovered cloud would otherwise pull other corners
+//! when its queries were split among another number of threads).
+TEST(TriangleTree, OfEquallyNearTrianglesTheLowestWhateverTheHint) {
+  QuadMesh mesh;
+  test::add_quad_grid(mesh, 6, [](int i, int j) { return QuadMesh::Point(i, j, 0.0); });
+  MeshTriangles triangles = triangulate(mesh);
+  TriangleTree tree(triangles);
+  TriangleNeighbourhoods neighbourhoods(tree, 64 * triangles.size());
+  std::vector<Eigen::Vector3d> queries;
+  for (int i = 0; i <= 6; ++i)
+    for (int j = 0; j <= 6; ++j) queries.emplace_back(i, j, 0.25 + 0.1 * (i + j));
+  queries.emplace_back(-1.0, -1.0, 0.5);
+  queries.emplace_back(7.0, 7.5, -0.5);
+  size_t ties = 0;
+  for (const Eigen::Vector3d& p : queries) {
+    double best = INFINITY;
+    std::vector<long> equally_near;
+    for (size_t t = 0; t < triangles.size(); ++t) {
+      const double d = tree.triangle_distance(p, t);
+      if (d < best) best = d, equally_near.clear();
+      if (d == best) equally_near.push_back(long(t));
+    }
+    const long lowest = equally_near.front();
+    ties += equally_near.size() > 1;
+    EXPECT_EQ(tree.nearest(p).second, lowest);
+    for (long hint : equally_near) {
+      EXPECT_EQ(tree.nearest(p, hint).second, lowest) << "hint " << hint;
+      EXPECT_EQ(neighbourhoods.nearest(p, hint).second, lowest) << "hint " << hint;
+    }
+  }
+  EXPECT_GT(ties, queries.size() / 2) << "no ties prove nothing";
+}
+
 TEST(TriangleTree, OverlapQueryFindsExactlyTheOverlappingBoxes) {
   MeshTriangles triangles = triangulate(folded_sheet(10, 4));
   TriangleTree tree(triangles);
