@@ -1,7 +1,5 @@
 #include "evolution/uncovered_reach.h"
 
-#include <omp.h>
-
 #include <algorithm>
 
 #include "core/point_index.h"
@@ -12,11 +10,6 @@
 
 namespace mcquad {
 namespace {
-
-//! Cloud points sampled each round: on the real scans (200,000 points) all
-//! of them, a few dozen per vertex of a default mesh; on a larger cloud a
-//! stride, which keeps a round within a fraction of an evolution step.
-constexpr size_t kSampledPoints = 200000;
 
 //! The fewest sampled points that must pull a vertex for it to move: a
 //! stray outlier or two does not.
@@ -65,50 +58,43 @@ struct Pulls {
       ++count[v];
     }
   }
-
-  void merge(const Pulls& other) {
-    for (size_t v = 0; v < sum.size(); ++v) {
-      sum[v] += other.sum[v];
-      weight[v] += other.weight[v];
-      count[v] += other.count[v];
-    }
-  }
 };
 
 //! The pulls of those of `candidates` (indices into the cloud) farther than
-//! `distance` from the mesh; their indices go to `uncovered`.
+//! `distance` from the mesh; their indices go to `uncovered`, in the order
+//! of `candidates`.
 Pulls pulls_toward_uncovered(const QuadMesh& mesh, const PointCloud& cloud, const std::vector<size_t>& candidates,
                              double distance, std::vector<size_t>& uncovered) {
   const MeshTriangles triangles = triangulate(mesh);
   const TriangleTree tree(triangles);
-  const int threads = omp_get_max_threads();
-  std::vector<Pulls> per_thread(static_cast<size_t>(threads), Pulls(triangles.positions.size()));
-  std::vector<std::vector<size_t>> found(static_cast<size_t>(threads));
+  const long count = long(candidates.size());
+  std::vector<long> nearest(candidates.size(), -1);  // -1: covered
+  std::vector<Eigen::Vector3d> foot(candidates.size());
 #pragma omp parallel
   {
-    const size_t thread = size_t(omp_get_thread_num());
     long hint = -1;  // the cloud is sorted spatially: the last answer is near
 #pragma omp for schedule(static)
-    for (long i = 0; i < long(candidates.size()); ++i) {
-      const size_t point = candidates[size_t(i)];
-      const Eigen::Vector3d p = cloud.points[point].cast<double>();
-      const auto [gap, triangle] = tree.nearest(p, hint);
+    for (long i = 0; i < count; ++i) {
+      const Eigen::Vector3d p = cloud.points[candidates[size_t(i)]].cast<double>();
+      const auto [gap, triangle] = tree.nearest(p, hint);  // the same triangle whatever the hint
       hint = triangle;
       if (triangle < 0 || gap <= distance) continue;
-      found[thread].push_back(point);
       const size_t t = size_t(triangle);
-      per_thread[thread].add(
-          triangles, t, p,
-          closest_point_on_triangle(p, triangles.corner(t, 0), triangles.corner(t, 1), triangles.corner(t, 2)));
+      nearest[size_t(i)] = triangle;
+      foot[size_t(i)] =
+          closest_point_on_triangle(p, triangles.corner(t, 0), triangles.corner(t, 1), triangles.corner(t, 2));
     }
   }
+  // Summed in one thread, in the candidates' order: the same sums, to the
+  // last bit, whatever the thread count.
+  Pulls pulls(triangles.positions.size());
   uncovered.clear();
-  for (size_t k = 0; k < per_thread.size(); ++k) {
-    if (k > 0) per_thread[0].merge(per_thread[k]);
-    uncovered.insert(uncovered.end(), found[k].begin(), found[k].end());
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    if (nearest[i] < 0) continue;
+    uncovered.push_back(candidates[i]);
+    pulls.add(triangles, size_t(nearest[i]), cloud.points[candidates[i]].cast<double>(), foot[i]);
   }
-  std::sort(uncovered.begin(), uncovered.end());  // in the cloud's (spatial) order again
-  return std::move(per_thread[0]);
+  return pulls;
 }
 
 }  // namespace
@@ -124,7 +110,7 @@ UncoveredReach pull_toward_uncovered_cloud(QuadMesh& mesh, const MeshArrays& sta
   // those points, and a full look each round cost more than the evolution.
   std::vector<size_t> candidates, uncovered;
   std::vector<Eigen::Vector3f> sample;
-  for (size_t i = 0; i < cloud.size(); i += std::max<size_t>(1, cloud.size() / kSampledPoints)) {
+  for (size_t i = 0; i < cloud.size(); i += std::max<size_t>(1, cloud.size() / kReachSampledPoints)) {
     candidates.push_back(i);
     sample.push_back(cloud.points[i]);
   }

@@ -16,6 +16,11 @@ namespace mcquad {
 constexpr double kReachDistance = 1.0 / 6.0;
 //! The longest move a pulled vertex makes in one round, in epsilon.
 constexpr double kReachLongestStep = 0.5;
+//! Cloud points the reach looks at, at most: on the real scans (200,000
+//! points) all of them, a few dozen per vertex of a default mesh; on a
+//! larger cloud a stride, which keeps a round within a fraction of an
+//! evolution step.
+constexpr size_t kReachSampledPoints = 200000;
 //! Rounds of pulling at most.
 constexpr int kReachRounds = 16;
 //! Evolution steps after the pulling, to settle what it moved onto the cloud.
