@@ -94,9 +94,10 @@ struct EvolutionParameters {
   //! (evolution/deep_vertex_push.h, turned_face_smoothing.h).
   bool push_deep = true;
   //! Robust mode: after the evolution, the cloud it left uncovered pulls
-  //! the mesh (evolution/uncovered_reach.h); on a scan with normals the
-  //! fit so reached is kept where the area it turns against them stays
-  //! within the verdict's bound or grows not at all (pipeline/fit.cpp).
+  //! the mesh (evolution/uncovered_reach.h); the fit so reached is kept
+  //! where its cloud -> mesh p95 is lower and, on a scan with normals, the
+  //! area it turns against them stays within the verdict's bound or grows
+  //! not at all (pipeline/fit.cpp).
   bool reach_uncovered = true;
 };
 

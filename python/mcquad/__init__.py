@@ -280,8 +280,9 @@ def fit(
         push_deep: robust mode, on a scan with normals, with the smoothing of turned faces: push vertices left
             deep below the scan out first; the pushed fit is kept where it turns no more area against the scan.
         reach_uncovered: robust mode: after the evolution, cloud points it left more than a sixth of epsilon
-            from the mesh pull it; on a scan with normals the fit so reached is kept where the area it turns
-            against them stays within the verdict's bound or grows not at all.
+            from the mesh pull it; the fit so reached is kept where its cloud -> mesh p95 is lower and, on a
+            scan with normals, the area it turns against them stays within the verdict's bound or grows not
+            at all.
         iterations: maximal number of iterations.
         tolerance: stop when the error level improves by less than this fraction (0: never).
         seed: random seed; the same seed gives the same mesh, bit for bit, as ``mcquad fit --seed``.
