@@ -43,8 +43,16 @@ void check_output_path(const std::string& path, const std::vector<std::string>& 
 
 void print_surface_summary(const SurfaceReport& report, bool with_cloud);
 
-const std::vector<std::string> kMeshExtensions = {"obj", "off", "ply", "om", "stl", "stla"};
-const std::vector<std::string> kCadExtensions = {"step", "stp", "iges", "igs"};
+// Function-local statics: built on first use, where an allocation failure can
+// be caught, not before main.
+const std::vector<std::string>& mesh_extensions() {
+  static const std::vector<std::string> kExtensions = {"obj", "off", "ply", "om", "stl", "stla"};
+  return kExtensions;
+}
+const std::vector<std::string>& cad_extensions() {
+  static const std::vector<std::string> kExtensions = {"step", "stp", "iges", "igs"};
+  return kExtensions;
+}
 
 //! The failed checks on stderr, the verdict on stdout; the exit code.
 int report_verdict(const Verdict& verdict, bool strict) {
@@ -240,13 +248,13 @@ struct FitCommand {
   }
 
   int run(bool evolution) {
-    check_output_path(output, kMeshExtensions);
+    check_output_path(output, mesh_extensions());
     if (!report.empty()) check_output_path(report, {"json"});
     if (!html.empty()) check_output_path(html, {"html"});
     if (!html.empty()) check_three_js();
-    if (!options.surfaces.cad_path.empty()) check_output_path(options.surfaces.cad_path, kCadExtensions);
+    if (!options.surfaces.cad_path.empty()) check_output_path(options.surfaces.cad_path, cad_extensions());
     if (!options.surfaces.control_nets_path.empty())
-      check_output_path(options.surfaces.control_nets_path, kMeshExtensions);
+      check_output_path(options.surfaces.control_nets_path, mesh_extensions());
     options.evolve = evolution;
     options.evolution.alpha_max = alpha_degrees * M_PI / 180.0;
     options.initial.min_junction_angle = junction_degrees * M_PI / 180.0;
@@ -419,8 +427,8 @@ void print_surface_summary(const SurfaceReport& report, bool with_cloud) {
 
 int run_surfaces(const std::string& mesh_path, const std::string& points_path, const SurfaceOutputs& outputs,
                  const std::string& json_path) {
-  check_output_path(outputs.cad_path, kCadExtensions);
-  if (!outputs.control_nets_path.empty()) check_output_path(outputs.control_nets_path, kMeshExtensions);
+  check_output_path(outputs.cad_path, cad_extensions());
+  if (!outputs.control_nets_path.empty()) check_output_path(outputs.control_nets_path, mesh_extensions());
   if (!json_path.empty()) check_output_path(json_path, {"json"});
   QuadMesh mesh = read_mesh(mesh_path);
   if (mesh.n_faces() == 0) throw InputError(mesh_path + ": the mesh has no faces");

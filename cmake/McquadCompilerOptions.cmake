@@ -7,6 +7,10 @@ function(mcquad_target_options target)
                                              -Wno-deprecated-declarations
                                              # GCC 12 false positives inside OpenMesh property containers
                                              $<$<CXX_COMPILER_ID:GNU>:-Wno-maybe-uninitialized>)
+    # Position-independent code (CMakeLists.txt) without ELF's symbol
+    # interposition, which would stop GCC inlining the library's own
+    # functions into each other: nothing replaces them at run time.
+    target_compile_options(${target} PRIVATE $<$<CXX_COMPILER_ID:GNU>:-fno-semantic-interposition>)
     if(MCQUAD_WARNINGS_AS_ERRORS)
       target_compile_options(${target} PRIVATE -Werror)
     endif()

@@ -20,7 +20,7 @@ std::vector<uint32_t> bones_within(const SkeletonGraph& graph, const std::vector
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
   for (int end : graph.edges[bone]) {
     distance[size_t(end)] = 0;
-    queue.push({0.0, end});
+    queue.emplace(0.0, end);
   }
   std::vector<uint32_t> seen;
   while (!queue.empty()) {
@@ -34,7 +34,7 @@ std::vector<uint32_t> bones_within(const SkeletonGraph& graph, const std::vector
       double next = d + (graph.positions[size_t(other)] - graph.positions[size_t(node)]).norm();
       if (next <= limit && next < distance[size_t(other)]) {
         distance[size_t(other)] = next;
-        queue.push({next, other});
+        queue.emplace(next, other);
       }
     }
   }

@@ -333,7 +333,7 @@ void random_tree(ShapeBuilder& b, uint64_t seed) {
         // A chain to a second junction, which then grows 2 to 4 arms.
         ++junctions;
         const int child = lay(*arm, false);
-        directions_at[size_t(child)].push_back(-arm->direction);
+        directions_at[size_t(child)].emplace_back(-arm->direction);
         const int arms = 2 + int(random() % 3);
         for (int j = 0; j < arms && !failed; ++j) {
           std::optional<Arm> twig = draw(child);

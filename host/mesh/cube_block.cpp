@@ -93,7 +93,7 @@ BlockOrientation orient_cube_block(const std::vector<Eigen::Vector3d>& bone_dire
   };
   for (const auto& r : candidates) consider(r);
   // Polish with small deterministic random rotations (fixed seed).
-  std::mt19937 random(12345);
+  std::mt19937 random(12345);  // NOLINT(bugprone-random-generator-seed): the same polish every run
   std::normal_distribution<double> gauss(0.0, 1.0);
   for (int step = 0; step < 300; ++step) {
     double scale = 0.3 * (1.0 - step / 300.0) + 0.01;

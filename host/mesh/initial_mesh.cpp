@@ -367,6 +367,7 @@ class MeshAssembler {
 
   void sweep_chain(const Branch& branch) {
     std::vector<Eigen::Vector3d> skeleton;
+    skeleton.reserve(branch.nodes.size());
     for (int node : branch.nodes) skeleton.push_back(graph_.positions[node]);
     int first = branch.nodes.front(), last = branch.nodes.back();
     const Port* start_port = nullptr;
@@ -714,7 +715,7 @@ int refinement_levels(const QuadMesh& mesh, const InitialMeshOptions& options) {
   int levels = 1;  // 8 -> 16 vertices around a tube (docs/DESIGN.md)
   if (options.target_vertices > 0) {
     levels = 0;
-    for (double v = double(mesh.n_vertices()); v < double(options.target_vertices) && levels < 7; v *= 4) ++levels;
+    for (size_t v = mesh.n_vertices(); v < options.target_vertices && levels < 7; v *= 4) ++levels;
   } else if (options.resolution > 0) {
     levels = std::max(0, int(std::ceil(std::log2(mean_edge_length(mesh) / options.resolution) - 1e-9)));
   }

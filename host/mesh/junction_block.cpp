@@ -127,7 +127,7 @@ std::vector<Port> add_junction_block(QuadSoup& soup, const Eigen::Vector3d& cent
   auto crotch_between = [&](const Eigen::Vector3d& u, const Eigen::Vector3d& v) -> std::optional<Eigen::Vector3d> {
     auto apex = [&](const Eigen::Vector3d& d) { return kCrotchSlack * tube_union_reach(bones, d); };
     const double enough = kCrotchSearch * apex((u + v).normalized());
-    const Eigen::Vector3d crotch = nearest_on_arc(u, v, [&](const Eigen::Vector3d& d) { return reach(d, enough); });
+    Eigen::Vector3d crotch = nearest_on_arc(u, v, [&](const Eigen::Vector3d& d) { return reach(d, enough); });
     if (reach(crotch, apex(crotch)) < apex(crotch)) return crotch;
     return std::nullopt;
   };

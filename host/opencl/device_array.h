@@ -63,8 +63,8 @@ const cl::Buffer& kernel_argument(const DeviceArray<T>& array) {
   return array.buffer();
 }
 template <typename T>
-const T& kernel_argument(const T& value) {
-  return value;
+T kernel_argument(const T& value) {
+  return value;  // a copy: scalars and small structs
 }
 
 //! Sets every argument of a kernel in order (no hand-numbered indices).

@@ -39,7 +39,7 @@ std::optional<Eigen::Vector3d> remove_limb_nearest(SkeletonData& skeleton, const
     }
   }
   if (nearest_limb.empty()) return std::nullopt;
-  const Eigen::Vector3d end = skeleton.nodes[size_t(nearest_limb.front())];
+  Eigen::Vector3d end = skeleton.nodes[size_t(nearest_limb.front())];
   std::vector<int> renumbered(n, -1);
   std::vector<bool> removed(n, false);
   for (int v : nearest_limb) removed[size_t(v)] = true;

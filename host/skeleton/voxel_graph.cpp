@@ -75,8 +75,8 @@ VoxelGraph build_voxel_graph(const std::vector<Eigen::Vector3f>& points, double 
           if (found == index.end()) continue;
           double length = (graph.centroids[v] - graph.centroids[found->second]).norm();
           if (length > reach) continue;
-          adjacent[v].push_back({found->second, float(length)});
-          adjacent[found->second].push_back({v, float(length)});
+          adjacent[v].emplace_back(found->second, float(length));
+          adjacent[found->second].emplace_back(v, float(length));
         }
   }
   graph.offsets.assign(graph.size() + 1, 0);
@@ -121,7 +121,7 @@ std::vector<double> geodesic_distances(const VoxelGraph& graph, const std::vecto
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
   for (uint32_t s : sources) {
     distance[s] = 0;
-    queue.push({0.0, s});
+    queue.emplace(0.0, s);
   }
   while (!queue.empty()) {
     auto [d, v] = queue.top();
@@ -132,7 +132,7 @@ std::vector<double> geodesic_distances(const VoxelGraph& graph, const std::vecto
       uint32_t w = graph.neighbours[e];
       if (through < distance[w]) {
         distance[w] = through;
-        queue.push({through, w});
+        queue.emplace(through, w);
       }
     }
   }
