@@ -110,7 +110,9 @@ UncoveredReach pull_toward_uncovered_cloud(QuadMesh& mesh, const MeshArrays& sta
   // those points, and a full look each round cost more than the evolution.
   std::vector<size_t> candidates, uncovered;
   std::vector<Eigen::Vector3f> sample;
-  for (size_t i = 0; i < cloud.size(); i += std::max<size_t>(1, cloud.size() / kReachSampledPoints)) {
+  // The same points as the fit's coverage test (covers_more) samples.
+  const size_t stride = cloud_sample_stride(cloud.size(), kReachSampledPoints);
+  for (size_t i = 0; i < cloud.size(); i += stride) {
     candidates.push_back(i);
     sample.push_back(cloud.points[i]);
   }
