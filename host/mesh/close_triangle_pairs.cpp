@@ -11,8 +11,9 @@ namespace mcquad {
 namespace {
 
 //! Whether the list's triangles may be refreshed one by one: beyond this
-//! share of the triangles gone stale, building the whole list costs less.
-constexpr size_t kMostStaleShare = 8;  // one in 8
+//! share of the triangles gone stale, building the whole list costs less
+//! (one in 8, 4 and 2 measured on the octopus's finer fit: docs/PERFORMANCE.md).
+constexpr size_t kMostStaleShare = 4;  // one in 4
 
 }  // namespace
 
@@ -33,14 +34,17 @@ std::vector<uint32_t> CloseTrianglePairs::flat_pairs() const {
 
 std::vector<float> CloseTrianglePairs::reference_floats() const {
   std::vector<float> out;
-  out.reserve(3 * reference_.size());
-  for (const Eigen::Vector3d& p : reference_) out.insert(out.end(), {float(p.x()), float(p.y()), float(p.z())});
+  if (!reference_) return out;
+  out.reserve(3 * reference_->triangles.positions.size());
+  for (const Eigen::Vector3d& p : reference_->triangles.positions)
+    out.insert(out.end(), {float(p.x()), float(p.y()), float(p.z())});
   return out;
 }
 
 double CloseTrianglePairs::move_limit() const {
   double extent = 0;
-  for (const Eigen::Vector3d& p : reference_) extent = std::max(extent, p.cwiseAbs().maxCoeff());
+  if (reference_)
+    for (const Eigen::Vector3d& p : reference_->triangles.positions) extent = std::max(extent, p.cwiseAbs().maxCoeff());
   // While no vertex is past the limit, none is more than gap / 2 from its
   // reference, so the positions' extent is at most extent + gap / 2; the
   // allowance is taken twice, so that no rounding of the comparison itself
@@ -52,10 +56,9 @@ double CloseTrianglePairs::rounding_slack(double extent) const { return 8 * FLT_
 
 void CloseTrianglePairs::update(const MeshTriangles& triangles) {
   const size_t vertices = triangles.positions.size();
-  if (reference_.size() != vertices || partners_.size() != triangles.size()) {
-    reference_ = triangles.positions;
-    return refresh(triangles, nullptr);
-  }
+  if (!reference_ || reference_->triangles.positions.size() != vertices || partners_.size() != triangles.size())
+    return build(triangles);
+  std::vector<Eigen::Vector3d>& reference = reference_->triangles.positions;
   double extent = 0;
   for (const Eigen::Vector3d& p : triangles.positions) extent = std::max(extent, p.cwiseAbs().maxCoeff());
   // Two boxes that overlap now were within the two triangles' largest moves
@@ -66,7 +69,7 @@ void CloseTrianglePairs::update(const MeshTriangles& triangles) {
   std::vector<double> moved(vertices);
   bool any = false;
   for (size_t v = 0; v < vertices; ++v) {
-    moved[v] = 2 * (triangles.positions[v] - reference_[v]).cwiseAbs().maxCoeff() + slack;
+    moved[v] = 2 * (triangles.positions[v] - reference[v]).cwiseAbs().maxCoeff() + slack;
     any |= moved[v] > gap_;
   }
   if (!any) return;
@@ -74,11 +77,7 @@ void CloseTrianglePairs::update(const MeshTriangles& triangles) {
   // mesh drifts (the knot's steps), the next call would find the next few
   // gone, and a refresh each step cost more than a rebuild now and then.
   std::vector<char> gone(vertices, 0);
-  for (size_t v = 0; v < vertices; ++v)
-    if (moved[v] > 0.5 * gap_) {
-      gone[v] = 1;
-      reference_[v] = triangles.positions[v];
-    }
+  for (size_t v = 0; v < vertices; ++v) gone[v] = moved[v] > 0.5 * gap_;
   std::vector<char> stale(triangles.size(), 0);
   size_t stale_count = 0;
   for (size_t t = 0; t < triangles.size(); ++t) {
@@ -86,38 +85,68 @@ void CloseTrianglePairs::update(const MeshTriangles& triangles) {
     stale[t] = gone[size_t(c[0])] || gone[size_t(c[1])] || gone[size_t(c[2])];
     stale_count += size_t(stale[t]);
   }
-  if (stale_count * kMostStaleShare <= triangles.size()) return refresh(triangles, &stale);
-  reference_ = triangles.positions;  // all of it again: every vertex starts afresh
-  refresh(triangles, nullptr);
+  if (stale_count * kMostStaleShare > triangles.size()) return build(triangles);  // every vertex starts afresh
+  for (size_t v = 0; v < vertices; ++v)
+    if (gone[v]) reference[v] = triangles.positions[v];
+  refresh(stale);
 }
 
-void CloseTrianglePairs::refresh(const MeshTriangles& triangles, const std::vector<char>* stale) {
-  // The pairs of stale triangles go; those of fresh ones stay. Then the
-  // stale triangles' pairs are looked for at the reference positions.
-  if (!stale) {
-    std::vector<std::vector<uint32_t>>().swap(partners_);  // the old list goes before the new one is found
-    partners_.resize(triangles.size());
-  } else {
-    for (size_t t = 0; t < partners_.size(); ++t) {
-      if (!(*stale)[t]) continue;
-      for (uint32_t p : partners_[t]) {
-        if ((*stale)[p]) continue;
-        auto& theirs = partners_[p];
-        theirs.erase(std::lower_bound(theirs.begin(), theirs.end(), uint32_t(t)));
-      }
-      partners_[t].clear();
-    }
-  }
-  MeshTriangles at_reference{reference_, triangles.corners, triangles.face};
-  TriangleTree tree(at_reference);
+void CloseTrianglePairs::build(const MeshTriangles& triangles) {
+  // The old list and tree go before the new ones are made.
+  std::vector<std::vector<uint32_t>>().swap(partners_);
+  partners_.resize(triangles.size());
+  reference_.reset();
+  reference_ = std::make_unique<ReferenceTree>(triangles);
+  const MeshTriangles& at_reference = reference_->triangles;
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> found(static_cast<size_t>(omp_get_max_threads()));
-  tree.for_each_overlapping_pair(
-      stale,
+  reference_->tree.for_each_overlapping_pair(
+      nullptr,
       [&](size_t a, size_t b, int thread) {
         if (at_reference.face[a] == at_reference.face[b] || triangles_share_a_vertex(at_reference, a, b)) return;
         found[size_t(thread)].emplace_back(uint32_t(a), uint32_t(b));
       },
       8192, float(gap_));
+  add_pairs(found);
+  ++builds_;
+}
+
+void CloseTrianglePairs::refresh(const std::vector<char>& stale) {
+  // The pairs of stale triangles go; those of fresh ones stay. Then the
+  // stale triangles' pairs are looked for at the new references, each
+  // stale triangle's box against the refitted tree: a pair of two stale
+  // triangles from its lower one.
+  std::vector<uint32_t> stale_triangles;
+  for (size_t t = 0; t < partners_.size(); ++t) {
+    if (!stale[t]) continue;
+    stale_triangles.push_back(uint32_t(t));
+    for (uint32_t p : partners_[t]) {
+      if (stale[p]) continue;
+      auto& theirs = partners_[p];
+      theirs.erase(std::lower_bound(theirs.begin(), theirs.end(), uint32_t(t)));
+    }
+    partners_[t].clear();
+  }
+  reference_->tree.refit(stale);
+  const MeshTriangles& at_reference = reference_->triangles;
+  const TriangleTree& tree = reference_->tree;
+  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> found(static_cast<size_t>(omp_get_max_threads()));
+  const long count = long(stale_triangles.size());
+#pragma omp parallel for schedule(dynamic, 64) if (count > 1024)
+  for (long i = 0; i < count; ++i) {
+    const uint32_t a = stale_triangles[size_t(i)];
+    auto& mine = found[size_t(omp_get_thread_num())];
+    tree.for_each_within_gap(tree.box(a), float(gap_), [&](size_t b) {
+      if ((stale[b] && b <= a) || at_reference.face[a] == at_reference.face[b] ||
+          triangles_share_a_vertex(at_reference, a, b))
+        return;
+      mine.emplace_back(std::min(a, uint32_t(b)), std::max(a, uint32_t(b)));
+    });
+  }
+  add_pairs(found);
+  ++refreshes_;
+}
+
+void CloseTrianglePairs::add_pairs(const std::vector<std::vector<std::pair<uint32_t, uint32_t>>>& found) {
   // Each list sorted, so that the whole test reads each pair once, from its
   // lower triangle's list, past its own index.
   std::vector<char> touched(partners_.size(), 0);
@@ -131,7 +160,6 @@ void CloseTrianglePairs::refresh(const MeshTriangles& triangles, const std::vect
 #pragma omp parallel for schedule(dynamic, 1024) if (count > 8192)
   for (long t = 0; t < count; ++t)
     if (touched[size_t(t)]) std::sort(partners_[size_t(t)].begin(), partners_[size_t(t)].end());
-  ++(stale ? refreshes_ : builds_);
 }
 
 std::vector<std::pair<int, int>> CloseTrianglePairs::intersecting_face_pairs(const MeshTriangles& triangles,

@@ -2,10 +2,12 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
 #include "mesh/face_intersections.h"
+#include "mesh/triangle_tree.h"
 
 namespace mcquad {
 
@@ -20,7 +22,8 @@ namespace mcquad {
 //! that have gone further (and with them those half way there) take their
 //! positions as new references and only their triangles' pairs are looked
 //! for again (the smoothing of a few turned faces, or the held-back
-//! vertices of a fine mesh, move a few vertices far while the rest stay);
+//! vertices of a fine mesh, move a few vertices far while the rest stay),
+//! in the tree of the whole list's build refitted to the new references;
 //! when they are many, the whole list is built again. On the knot's mesh most of the evolution's steps move every
 //! vertex far less than that (docs/PERFORMANCE.md).
 class CloseTrianglePairs {
@@ -59,9 +62,19 @@ class CloseTrianglePairs {
   size_t refreshes() const { return refreshes_; }
 
  private:
+  //! The mesh's triangles at the reference positions, and their tree, made
+  //! at the whole list's build and refitted at each refresh (a new tree each
+  //! time, sorted anew, cost most of a refresh: docs/PERFORMANCE.md). On the
+  //! heap, so that the tree's reference to the triangles survives a move.
+  struct ReferenceTree {
+    MeshTriangles triangles;
+    TriangleTree tree;
+    explicit ReferenceTree(MeshTriangles at_reference) : triangles(std::move(at_reference)), tree(triangles) {}
+  };
+
   double gap_;
-  //! Per vertex, its reference position.
-  std::vector<Eigen::Vector3d> reference_;
+  //! Null until the first build.
+  std::unique_ptr<ReferenceTree> reference_;
   //! Per triangle, the triangles it is listed with (each pair under both).
   //! A vector each, so that a refresh touches only the stale triangles' and
   //! their partners' (one array for all, rebuilt at every refresh, made the
@@ -75,9 +88,13 @@ class CloseTrianglePairs {
   //! Brings the list up to `triangles`' positions: nothing, the pairs of the
   //! triangles round the vertices gone too far, or all of it.
   void update(const MeshTriangles& triangles);
+  //! Makes the whole list, every vertex's reference its position now.
+  void build(const MeshTriangles& triangles);
   //! Looks again for the pairs of the `stale` triangles (per triangle,
-  //! nonzero; all when null), at the reference positions.
-  void refresh(const MeshTriangles& triangles, const std::vector<char>* stale);
+  //! nonzero), whose corners have taken new references.
+  void refresh(const std::vector<char>& stale);
+  //! Lists the pairs found (a < b; a list per thread) under both triangles.
+  void add_pairs(const std::vector<std::vector<std::pair<uint32_t, uint32_t>>>& found);
 };
 
 }  // namespace mcquad

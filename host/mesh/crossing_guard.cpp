@@ -68,13 +68,19 @@ CrossingGuard::CrossingGuard(const MeshArrays& mesh)
   low_faces_.resize(mesh.face_count());
   std::iota(low_faces_.begin(), low_faces_.end(), 0u);
   raise_jacobian_floors(mesh.positions);
-  known_ = defects(mesh.positions);
+  // The start's crossings by a search of their own: the close pairs are
+  // made when first needed, at the positions then (the guards of the
+  // settling steps start far from here, and a list made here went at once).
+  known_ = with_shape_defects(intersecting_face_pairs(triangles_), mesh.positions, nullptr);
   drop_single_faces(known_);
   known_at_ = mesh.positions;
 }
 
 GuardArrays CrossingGuard::device_arrays() const {
   GuardArrays arrays;
+  // The close pairs at the positions last accepted (triangles_ holds them),
+  // if no call has made them yet.
+  if (close_pairs_.builds() == 0) close_pairs_.intersecting_face_pairs(triangles_);
   for (const auto& corners : triangles_.corners)
     arrays.triangle_corners.insert(arrays.triangle_corners.end(),
                                    {uint32_t(corners[0]), uint32_t(corners[1]), uint32_t(corners[2])});
@@ -116,8 +122,13 @@ std::vector<CrossingGuard::Defect> CrossingGuard::defects(const std::vector<floa
 std::vector<CrossingGuard::Defect> CrossingGuard::find_defects(const MeshTriangles& triangles,
                                                                const std::vector<float>& positions,
                                                                const std::vector<char>* only_faces) const {
+  return with_shape_defects(close_pairs_.intersecting_face_pairs(triangles, only_faces), positions, only_faces);
+}
+
+std::vector<CrossingGuard::Defect> CrossingGuard::with_shape_defects(std::vector<Defect> found,
+                                                                     const std::vector<float>& positions,
+                                                                     const std::vector<char>* only_faces) const {
   const size_t faces = mesh_.face_count();
-  std::vector<Defect> found = close_pairs_.intersecting_face_pairs(triangles, only_faces);
   // The faces to test, and those whose normals the fold test needs: theirs
   // and their neighbours'.
   std::vector<int> tested;

@@ -107,6 +107,10 @@ class CrossingGuard {
   //! defects() on `triangles`, which hold `positions`.
   std::vector<Defect> find_defects(const MeshTriangles& triangles, const std::vector<float>& positions,
                                    const std::vector<char>* only_faces) const;
+  //! The crossing face pairs `found` (of the faces tested), with the folds,
+  //! turned faces and poorly shaped quads among the faces tested, sorted.
+  std::vector<Defect> with_shape_defects(std::vector<Defect> found, const std::vector<float>& positions,
+                                         const std::vector<char>* only_faces) const;
 };
 
 }  // namespace mcquad

@@ -25,14 +25,7 @@ TriangleTree::TriangleTree(const MeshTriangles& triangles) : triangles_(triangle
   Box all;
   std::vector<Eigen::Vector3f> centroids(n);
   for (size_t t = 0; t < n; ++t) {
-    Eigen::Vector3d lo = triangles.corner(t, 0).cwiseMin(triangles.corner(t, 1)).cwiseMin(triangles.corner(t, 2));
-    Eigen::Vector3d hi = triangles.corner(t, 0).cwiseMax(triangles.corner(t, 1)).cwiseMax(triangles.corner(t, 2));
-    Eigen::Vector3f low, high;
-    for (int k = 0; k < 3; ++k) {
-      low[k] = std::nextafter(float(lo[k]), -INFINITY);
-      high[k] = std::nextafter(float(hi[k]), INFINITY);
-    }
-    boxes_[t] = Box(low, high);
+    boxes_[t] = box_of(t);
     centroids[t] = triangles.centroid(t).cast<float>();
     all.extend(centroids[t]);
   }
@@ -53,7 +46,39 @@ TriangleTree::TriangleTree(const MeshTriangles& triangles) : triangles_(triangle
   nodes_.reserve(2 * (n / kLeafSize + 1));
   nodes_.emplace_back();
   build(0, 0, int(n));
-  fit_boxes(0);
+  fit_boxes();
+}
+
+TriangleTree::Box TriangleTree::box_of(size_t t) const {
+  const MeshTriangles& triangles = triangles_;
+  Eigen::Vector3d lo = triangles.corner(t, 0).cwiseMin(triangles.corner(t, 1)).cwiseMin(triangles.corner(t, 2));
+  Eigen::Vector3d hi = triangles.corner(t, 0).cwiseMax(triangles.corner(t, 1)).cwiseMax(triangles.corner(t, 2));
+  Eigen::Vector3f low, high;
+  for (int k = 0; k < 3; ++k) {
+    low[k] = std::nextafter(float(lo[k]), -INFINITY);
+    high[k] = std::nextafter(float(hi[k]), INFINITY);
+  }
+  return {low, high};
+}
+
+void TriangleTree::refit(const std::vector<char>& moved) {
+  for (size_t t = 0; t < boxes_.size(); ++t)
+    if (moved[t]) boxes_[t] = box_of(t);
+  fit_boxes();
+}
+
+void TriangleTree::fit_boxes() {
+  // Children come after their parent, so one backward sweep sees them first.
+  for (size_t k = nodes_.size(); k-- > 0;) {
+    Node& node = nodes_[k];
+    Box box;
+    if (node.count > 0) {
+      for (int i = node.first; i < node.first + node.count; ++i) box.extend(boxes_[size_t(order_[size_t(i)])]);
+    } else {
+      box = nodes_[size_t(node.first)].box.merged(nodes_[size_t(node.first + 1)].box);
+    }
+    node.box = box;
+  }
 }
 
 void TriangleTree::build(int node, int begin, int end) {
@@ -70,19 +95,6 @@ void TriangleTree::build(int node, int begin, int end) {
   int middle = begin + (end - begin) / 2;
   build(children, begin, middle);
   build(children + 1, middle, end);
-}
-
-void TriangleTree::fit_boxes(int node) {
-  Node& n = nodes_[size_t(node)];
-  Box box;
-  if (n.count > 0) {
-    for (int k = n.first; k < n.first + n.count; ++k) box.extend(boxes_[size_t(order_[size_t(k)])]);
-  } else {
-    fit_boxes(n.first);
-    fit_boxes(n.first + 1);
-    box = nodes_[size_t(n.first)].box.merged(nodes_[size_t(n.first + 1)].box);
-  }
-  nodes_[size_t(node)].box = box;
 }
 
 std::vector<char> TriangleTree::wanted_nodes(const std::vector<char>* wanted) const {

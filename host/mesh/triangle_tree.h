@@ -55,6 +55,35 @@ class TriangleTree {
     }
   }
 
+  //! Calls `visit(t)` for every triangle t whose box comes within `gap` of
+  //! `box` (per axis; the pair test of for_each_overlapping_pair).
+  template <typename Visit>
+  void for_each_within_gap(const Box& box, float gap, Visit&& visit) const {
+    if (nodes_.empty()) return;
+    int stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& node = nodes_[size_t(stack[--top])];
+      if (!within_gap(node.box, box, gap)) continue;
+      if (node.count > 0) {
+        for (int k = node.first; k < node.first + node.count; ++k)
+          if (within_gap(boxes_[size_t(order_[size_t(k)])], box, gap)) visit(size_t(order_[size_t(k)]));
+      } else {
+        stack[top++] = node.first;
+        stack[top++] = node.first + 1;
+      }
+    }
+  }
+
+  //! Takes the positions the triangles hold now: the boxes of the `moved`
+  //! triangles (per triangle, nonzero) are made again and every node's box
+  //! fitted to its children's. The tree's order stays as it was built, so
+  //! it answers as before, exactly, and as fast while the triangles have
+  //! moved little against their spacing (CloseTrianglePairs: a few
+  //! triangles at a time, where a new tree cost a sort of all of them).
+  void refit(const std::vector<char>& moved);
+
   //! Calls `visit(a, b)` once for every unordered pair of distinct triangles
   //! whose boxes overlap, or come within `gap`, and of which at least one
   //! is `wanted` (per triangle, nonzero; null: all). One traversal of the
@@ -100,8 +129,11 @@ class TriangleTree {
     Box box;
     int first = 0, count = 0;
   };
+  //! Triangle t's box at the positions it holds, in floats rounded outward.
+  Box box_of(size_t t) const;
   void build(int node, int begin, int end);
-  void fit_boxes(int node);
+  //! Every node's box from its triangles' or children's.
+  void fit_boxes();
   //! Per node: does its subtree hold a wanted triangle?
   std::vector<char> wanted_nodes(const std::vector<char>* wanted) const;
   //! Node pairs (i <= j) whose overlapping triangle pairs together are all

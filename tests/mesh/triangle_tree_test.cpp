@@ -130,6 +130,41 @@ TEST(TriangleTree, PairsWithinAGapAreExactlyThoseOfAllPairs) {
     }
 }
 
+//! A tree refitted after some corners moved answers as a tree built at the
+//! new positions: the same boxes, the same triangles within a gap of a box,
+//! the same nearest triangles (the order it was built in stays).
+TEST(TriangleTree, RefittedAfterMovesAnswersAsANewTree) {
+  MeshTriangles triangles = triangulate(folded_sheet(12, 6));
+  TriangleTree refitted(triangles);
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> jump(-1.5, 1.5);
+  for (int round = 0; round < 3; ++round) {
+    std::vector<char> moved_vertex(triangles.positions.size(), 0);
+    for (size_t v = size_t(round); v < triangles.positions.size(); v += 9) {
+      triangles.positions[v] += Eigen::Vector3d(jump(random), jump(random), jump(random));
+      moved_vertex[v] = 1;
+    }
+    std::vector<char> moved(triangles.size(), 0);
+    for (size_t t = 0; t < triangles.size(); ++t)
+      for (int k = 0; k < 3; ++k) moved[t] |= moved_vertex[size_t(triangles.corners[t][size_t(k)])];
+    refitted.refit(moved);
+    TriangleTree fresh(triangles);
+    for (size_t t = 0; t < triangles.size(); ++t) {
+      ASSERT_TRUE(refitted.box(t).min() == fresh.box(t).min() && refitted.box(t).max() == fresh.box(t).max());
+      if (t % 5 != 0) continue;
+      std::vector<size_t> found, expected;
+      refitted.for_each_within_gap(fresh.box(t), 0.4f, [&](size_t other) { found.push_back(other); });
+      fresh.for_each_within_gap(fresh.box(t), 0.4f, [&](size_t other) { expected.push_back(other); });
+      std::sort(found.begin(), found.end());
+      std::sort(expected.begin(), expected.end());
+      EXPECT_EQ(found, expected) << "round " << round << ", triangle " << t;
+      ASSERT_FALSE(expected.empty());
+      Eigen::Vector3d p = triangles.centroid(t) + Eigen::Vector3d(0.2, -0.3, 0.5);
+      EXPECT_EQ(refitted.nearest(p), fresh.nearest(p)) << "round " << round << ", triangle " << t;
+    }
+  }
+}
+
 //! With the lists (kLeastQueriesPerTriangle queries a triangle) and without
 //! them (one a triangle: every query descends the tree), the same distances.
 TEST(TriangleNeighbourhoods, NearestMatchesTheTreeAlongAWalkWithJumps) {
