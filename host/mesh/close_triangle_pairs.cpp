@@ -147,19 +147,23 @@ void CloseTrianglePairs::refresh(const std::vector<char>& stale) {
 }
 
 void CloseTrianglePairs::add_pairs(const std::vector<std::vector<std::pair<uint32_t, uint32_t>>>& found) {
-  // Each list sorted, so that the whole test reads each pair once, from its
-  // lower triangle's list, past its own index.
-  std::vector<char> touched(partners_.size(), 0);
+  // Counted first, so that each list grows once. Each list sorted, so that
+  // the whole test reads each pair once, from its lower triangle's list,
+  // past its own index.
+  std::vector<uint32_t> added(partners_.size(), 0);
+  for (const auto& some : found)
+    for (const auto& [a, b] : some) ++added[a], ++added[b];
+  for (size_t t = 0; t < partners_.size(); ++t)
+    if (added[t] > 0) partners_[t].reserve(partners_[t].size() + added[t]);
   for (const auto& some : found)
     for (const auto& [a, b] : some) {
       partners_[a].push_back(b);
       partners_[b].push_back(a);
-      touched[a] = touched[b] = 1;
     }
   const long count = long(partners_.size());
 #pragma omp parallel for schedule(dynamic, 1024) if (count > 8192)
   for (long t = 0; t < count; ++t)
-    if (touched[size_t(t)]) std::sort(partners_[size_t(t)].begin(), partners_[size_t(t)].end());
+    if (added[size_t(t)] > 0) std::sort(partners_[size_t(t)].begin(), partners_[size_t(t)].end());
 }
 
 std::vector<std::pair<int, int>> CloseTrianglePairs::intersecting_face_pairs(const MeshTriangles& triangles,

@@ -62,23 +62,45 @@ TriangleTree::Box TriangleTree::box_of(size_t t) const {
 }
 
 void TriangleTree::refit(const std::vector<char>& moved) {
-  for (size_t t = 0; t < boxes_.size(); ++t)
-    if (moved[t]) boxes_[t] = box_of(t);
-  fit_boxes();
+  if (parent_.empty()) index_parents();
+  for (size_t t = 0; t < boxes_.size(); ++t) {
+    if (!moved[t]) continue;
+    boxes_[t] = box_of(t);
+    // Its leaf and the nodes above, up to the first whose box stays (the
+    // boxes above it are then as they were): a few nodes a triangle, where
+    // every node's box cost a pass over the whole tree at each refresh.
+    for (int node = leaf_of_[t]; node >= 0; node = parent_[size_t(node)]) {
+      const Box box = box_from_below(nodes_[size_t(node)]);
+      Box& kept = nodes_[size_t(node)].box;
+      if (box.min() == kept.min() && box.max() == kept.max()) break;
+      kept = box;
+    }
+  }
+}
+
+void TriangleTree::index_parents() {
+  parent_.assign(nodes_.size(), -1);
+  leaf_of_.assign(boxes_.size(), -1);
+  for (size_t k = 0; k < nodes_.size(); ++k) {
+    const Node& node = nodes_[k];
+    if (node.count > 0) {
+      for (int i = node.first; i < node.first + node.count; ++i) leaf_of_[size_t(order_[size_t(i)])] = int(k);
+    } else {
+      parent_[size_t(node.first)] = parent_[size_t(node.first + 1)] = int(k);
+    }
+  }
+}
+
+TriangleTree::Box TriangleTree::box_from_below(const Node& node) const {
+  if (node.count == 0) return nodes_[size_t(node.first)].box.merged(nodes_[size_t(node.first + 1)].box);
+  Box box;
+  for (int i = node.first; i < node.first + node.count; ++i) box.extend(boxes_[size_t(order_[size_t(i)])]);
+  return box;
 }
 
 void TriangleTree::fit_boxes() {
   // Children come after their parent, so one backward sweep sees them first.
-  for (size_t k = nodes_.size(); k-- > 0;) {
-    Node& node = nodes_[k];
-    Box box;
-    if (node.count > 0) {
-      for (int i = node.first; i < node.first + node.count; ++i) box.extend(boxes_[size_t(order_[size_t(i)])]);
-    } else {
-      box = nodes_[size_t(node.first)].box.merged(nodes_[size_t(node.first + 1)].box);
-    }
-    node.box = box;
-  }
+  for (size_t k = nodes_.size(); k-- > 0;) nodes_[k].box = box_from_below(nodes_[k]);
 }
 
 void TriangleTree::build(int node, int begin, int end) {

@@ -77,8 +77,8 @@ class TriangleTree {
   }
 
   //! Takes the positions the triangles hold now: the boxes of the `moved`
-  //! triangles (per triangle, nonzero) are made again and every node's box
-  //! fitted to its children's. The tree's order stays as it was built, so
+  //! triangles (per triangle, nonzero) are made again, and the boxes of
+  //! the nodes above them. The tree's order stays as it was built, so
   //! it answers as before, exactly, and as fast while the triangles have
   //! moved little against their spacing (CloseTrianglePairs: a few
   //! triangles at a time, where a new tree cost a sort of all of them).
@@ -132,8 +132,12 @@ class TriangleTree {
   //! Triangle t's box at the positions it holds, in floats rounded outward.
   Box box_of(size_t t) const;
   void build(int node, int begin, int end);
+  //! A node's box from its triangles' or its children's.
+  Box box_from_below(const Node& node) const;
   //! Every node's box from its triangles' or children's.
   void fit_boxes();
+  //! Fills parent_ and leaf_of_ (refit's way up).
+  void index_parents();
   //! Per node: does its subtree hold a wanted triangle?
   std::vector<char> wanted_nodes(const std::vector<char>* wanted) const;
   //! Node pairs (i <= j) whose overlapping triangle pairs together are all
@@ -151,6 +155,9 @@ class TriangleTree {
   std::vector<Box> boxes_;
   std::vector<int> order_;
   std::vector<Node> nodes_;
+  //! Per node its parent (-1 at the root), per triangle its leaf: made at
+  //! the first refit, for trees that are refitted.
+  std::vector<int> parent_, leaf_of_;
 };
 
 template <typename Visit>
