@@ -35,28 +35,9 @@ class TriangleTree {
   //! faster: the answer is the same.
   std::pair<double, long> nearest(const Eigen::Vector3d& p, long hint = -1) const;
 
-  //! Calls `visit(t)` for every triangle t whose box overlaps `box`.
-  template <typename Visit>
-  void for_each_overlapping(const Box& box, Visit&& visit) const {
-    if (nodes_.empty()) return;
-    int stack[128];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-      const Node& node = nodes_[size_t(stack[--top])];
-      if (!node.box.intersects(box)) continue;
-      if (node.count > 0) {
-        for (int k = node.first; k < node.first + node.count; ++k)
-          if (boxes_[size_t(order_[size_t(k)])].intersects(box)) visit(size_t(order_[size_t(k)]));
-      } else {
-        stack[top++] = node.first;
-        stack[top++] = node.first + 1;
-      }
-    }
-  }
-
   //! Calls `visit(t)` for every triangle t whose box comes within `gap` of
-  //! `box` (per axis; the pair test of for_each_overlapping_pair).
+  //! `box` (per axis; the pair test of for_each_overlapping_pair); with gap
+  //! 0, whose box overlaps it.
   template <typename Visit>
   void for_each_within_gap(const Box& box, float gap, Visit&& visit) const {
     if (nodes_.empty()) return;

@@ -97,7 +97,7 @@ TEST(TriangleTree, OverlapQueryFindsExactlyTheOverlappingBoxes) {
   TriangleTree tree(triangles);
   for (size_t t = 0; t < triangles.size(); t += 7) {
     std::vector<size_t> found, expected;
-    tree.for_each_overlapping(tree.box(t), [&](size_t other) { found.push_back(other); });
+    tree.for_each_within_gap(tree.box(t), 0.0f, [&](size_t other) { found.push_back(other); });
     for (size_t other = 0; other < triangles.size(); ++other)
       if (tree.box(other).intersects(tree.box(t))) expected.push_back(other);
     std::sort(found.begin(), found.end());
