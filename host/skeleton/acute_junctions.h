@@ -21,6 +21,8 @@ struct TubeSkeleton {
 //! bones are rejoined at a new junction just below that crotch, fed by a bone
 //! from the old junction. The angle at the new junction is wide enough for a
 //! block's faces. Pairs whose bones are too short to move along are kept.
+//! Other limbs that part together with the pair, or whose tubes still
+//! overlap the pair's past the new junction, move with it as one fan.
 TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssignment& bones, double min_angle,
                                     const std::string& source);
 

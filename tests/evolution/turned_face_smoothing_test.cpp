@@ -34,16 +34,21 @@ struct Junction {
   //! turns 0.081 % without the smoothing; the 40-degree fan (0.205 -> 0.021 %)
   //! took its place, and the 20-degree fan came back (0.681 -> 0.208 %,
   //! halved and more; `mcquad fit --turned-face-rounds 0`, then the
-  //! default, and `mcquad metrics --surface`).
+  //! default, and `mcquad metrics --surface`). Since limbs that hug a
+  //! forking pair move with it (skeleton/acute_junctions.h) both fans turn
+  //! under 0.03 % without the smoothing, and random tree 2 took their place
+  //! (0.648 -> 0.118 %, 40,000 points; its acute pairs are kept for want of
+  //! room).
   bool within_bound;
+  uint64_t seed = 1;
 };
 
 void PrintTo(const Junction& c, std::ostream* os) { *os << c.label; }
 
 //! Junctions whose creases leave more than 0.1 % of the area turned without
 //! the smoothing (docs/HARD_CASES.md).
-const Junction kJunctions[] = {
-    {"planar_8", "planar-star", 8, 0, true}, {"fan_40", "fan", 4, 40, true}, {"fan_20", "fan", 4, 20, false}};
+const Junction kJunctions[] = {{"planar_8", "planar-star", 8, 0, true},
+                               {"random_tree_2", "random-tree", 0, 0, false, 2}};
 
 struct Fitted {
   FitResult fit;
@@ -74,6 +79,7 @@ TEST_P(TurnedFaces, SmoothingTurnsTheCreasesFacesOut) {
   ShapeOptions options;
   options.arms = c.arms;
   options.angle_degrees = c.angle_degrees;
+  options.seed = c.seed;
   GeneratedShape shape = test::small_shape(c.shape, 40000, options);
   Fitted off = fit(shape, kind, 0);
   Fitted on = fit(shape, kind, EvolutionParameters().turned_face_rounds);

@@ -8,7 +8,9 @@
 #include "evolution/evolution_fixture.h"
 #include "generate/true_surface_distance.h"
 #include "mesh/face_intersections.h"
+#include "mesh/quad_shape.h"
 #include "metrics/mesh_metrics.h"
+#include "pipeline/fit.h"
 
 namespace mcquad {
 namespace {
@@ -176,15 +178,20 @@ INSTANTIATE_TEST_SUITE_P(Issue20, RandomTreeFits,
                                   std::get<1>(test_info.param);
                          });
 
-//! The fan of three limbs 30 degrees apart, moved at once to where they part
-//! (spread_acute_junctions, skeleton/acute_junctions.h), meets every bound
-//! of issue 20's fit on both backends: its crease had sunk a tube radius
-//! into the trunk (mean 1.23 %, p95 2.72 % of r before; docs/HARD_CASES.md).
-class ThirtyDegreeFan : public ::testing::TestWithParam<const char*> {};
+//! The fans of three limbs 30 and 40 degrees apart, each moved at once to
+//! where its limbs part (spread_acute_junctions, skeleton/acute_junctions.h),
+//! meet every bound of issue 20's fit on both backends, evolved alone. The
+//! 30-degree fan's crease had sunk a tube radius into the trunk (mean
+//! 1.23 %, p95 2.72 % of r before; docs/HARD_CASES.md, "A fan moves at
+//! once"); the 40-degree fan moved pair by pair, its third limb's crease
+//! left a mean of 0.59 % of r (0.15 % now; "Limbs that hug the forking
+//! pair"). The 20-degree fan needs the whole fit (below).
+class FanFits : public ::testing::TestWithParam<std::tuple<double, const char*>> {};
 
-TEST_P(ThirtyDegreeFan, MeetsEveryBoundOfTheFit) {
-  test::Fixture f("fan", 40000, with(30));
-  std::vector<float> positions = evolve_robust(f, GetParam());
+TEST_P(FanFits, MeetEveryBoundOfTheFit) {
+  const auto& [angle, backend] = GetParam();
+  test::Fixture f("fan", 40000, with(angle));
+  std::vector<float> positions = evolve_robust(f, backend);
   if (positions.empty()) GTEST_SKIP() << "no OpenCL device";
   Measured end = measure(f, positions);
   EXPECT_EQ(end.crossing, 0u);
@@ -195,8 +202,68 @@ TEST_P(ThirtyDegreeFan, MeetsEveryBoundOfTheFit) {
   EXPECT_GE(end.least_jacobian, 0.2);
 }
 
-INSTANTIATE_TEST_SUITE_P(Issue20, ThirtyDegreeFan, ::testing::ValuesIn(kBackends),
-                         [](const auto& test_info) { return std::string(test_info.param); });
+INSTANTIATE_TEST_SUITE_P(Issue20, FanFits,
+                         ::testing::Combine(::testing::Values(30.0, 40.0), ::testing::ValuesIn(kBackends)),
+                         [](const auto& test_info) {
+                           return "degrees_" + std::to_string(int(std::get<0>(test_info.param))) + "_" +
+                                  std::get<1>(test_info.param);
+                         });
+
+//! A generated shape fitted as `mcquad fit` fits it, measured as
+//! `scripts/junction-bounds` measures it.
+struct WholeFit {
+  const char* label;
+  const char* shape;
+  int points;
+  ShapeOptions options;
+};
+
+void PrintTo(const WholeFit& c, std::ostream* os) { *os << c.label; }
+
+ShapeOptions tree(uint64_t seed) {
+  ShapeOptions o;
+  o.seed = seed;
+  return o;
+}
+
+//! Shapes whose third limb hugs a forking pair (hugging_limbs,
+//! skeleton/acute_junctions.h): the 20-degree fan, and random tree 10's
+//! trunk with a branch folded back along it on either side. Moved pair by
+//! pair, the third limb's crease stayed a double wall inside the cloud
+//! (inward area 0.175 and 0.206 %, over issue 20's 0.1 %); moved with the
+//! pair, they meet every bound of issue 20's fit on both backends (the 20-
+//! degree fan's stem needs the refinement where the evolution left the
+//! cloud uncovered: coverage 8.3 % of r evolved alone, 2.2 % fitted).
+class HuggingLimbFits : public ::testing::TestWithParam<std::tuple<WholeFit, BackendKind>> {};
+
+TEST_P(HuggingLimbFits, MeetEveryBoundOfTheFit) {
+  const auto& [c, kind] = GetParam();
+  REQUIRE_BACKEND(device_found, kind);
+  const GeneratedShape shape = test::small_shape(c.shape, c.points, c.options);
+  FitOptions options;
+  options.backend = kind;
+  const FitResult fit = run_fit(FitInput{shape.cloud, shape.skeleton, "shape.ply", "shape.skeleton.obj"}, options);
+  const TrueSurfaceDistance truth = measure_true_surface_distance(fit.mesh, shape.surface);
+  EXPECT_EQ(intersecting_face_pairs(fit.mesh).size(), 0u);
+  EXPECT_LE(truth.inward_area_fraction, 0.001);
+  EXPECT_LE(truth.relative.mean, 0.01);
+  EXPECT_LE(truth.relative.p95, 0.03);
+  EXPECT_LE(cloud_to_mesh_relative_to_local_radius(fit.mesh, shape.cloud, shape.surface).p95, 0.05);
+  EXPECT_GE(measure_quad_shape(fit.mesh).min_scaled_jacobian, 0.2);
+}
+
+const WholeFit kHuggingLimbs[] = {
+    {"fan_20", "fan", 40000, with(20)},
+    {"random_tree_10", "random-tree", 30000, tree(10)},
+};
+
+INSTANTIATE_TEST_SUITE_P(Issue20, HuggingLimbFits,
+                         ::testing::Combine(::testing::ValuesIn(kHuggingLimbs),
+                                            ::testing::ValuesIn(test::backend_kinds())),
+                         [](const auto& info) {
+                           return std::string(std::get<0>(info.param).label) +
+                                  (std::get<1>(info.param) == BackendKind::kSerial ? "_serial" : "_opencl");
+                         });
 
 //! The 15-degree Y's branches never part and are built as one tube, twice as
 //! wide at its end as the trunk's: 16 vertices around do not resolve the two
