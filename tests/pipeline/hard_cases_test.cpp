@@ -260,9 +260,9 @@ const WholeFit kHuggingLimbs[] = {
 INSTANTIATE_TEST_SUITE_P(Issue20, HuggingLimbFits,
                          ::testing::Combine(::testing::ValuesIn(kHuggingLimbs),
                                             ::testing::ValuesIn(test::backend_kinds())),
-                         [](const auto& info) {
-                           return std::string(std::get<0>(info.param).label) +
-                                  (std::get<1>(info.param) == BackendKind::kSerial ? "_serial" : "_opencl");
+                         [](const auto& test_info) {
+                           return std::string(std::get<0>(test_info.param).label) +
+                                  (std::get<1>(test_info.param) == BackendKind::kSerial ? "_serial" : "_opencl");
                          });
 
 //! The 15-degree Y's branches never part and are built as one tube, twice as
