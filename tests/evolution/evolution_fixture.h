@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <string>
+#include <tuple>
 
 #include "evolution/evolution_backend.h"
 #include "evolution/evolve.h"
@@ -145,6 +147,13 @@ inline std::vector<BackendKind> backend_kinds() {
 
 inline std::string backend_label(const testing::TestParamInfo<BackendKind>& info) {
   return info.param == BackendKind::kSerial ? "Serial" : "OpenCL";
+}
+
+//! A case-by-backend test's name: the case's label, then _serial or _opencl.
+template <class Case>
+std::string case_and_backend_label(const testing::TestParamInfo<std::tuple<Case, BackendKind>>& info) {
+  return std::string(std::get<0>(info.param).label) +
+         (std::get<1>(info.param) == BackendKind::kSerial ? "_serial" : "_opencl");
 }
 
 //! A backend of `kind`; null where OpenCL has no device (a failure where CI

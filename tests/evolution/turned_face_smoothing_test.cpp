@@ -106,10 +106,7 @@ TEST_P(TurnedFaces, SmoothingTurnsTheCreasesFacesOut) {
 INSTANTIATE_TEST_SUITE_P(Issue20, TurnedFaces,
                          ::testing::Combine(::testing::ValuesIn(kJunctions),
                                             ::testing::ValuesIn(test::backend_kinds())),
-                         [](const auto& test_info) {
-                           return std::string(std::get<0>(test_info.param).label) +
-                                  (std::get<1>(test_info.param) == BackendKind::kSerial ? "_serial" : "_opencl");
-                         });
+                         test::case_and_backend_label<Junction>);
 
 //! Without normals there is nothing to tell a turned face by: the mesh is
 //! left as it is, and the report says nothing of it.

@@ -260,10 +260,7 @@ const WholeFit kHuggingLimbs[] = {
 INSTANTIATE_TEST_SUITE_P(Issue20, HuggingLimbFits,
                          ::testing::Combine(::testing::ValuesIn(kHuggingLimbs),
                                             ::testing::ValuesIn(test::backend_kinds())),
-                         [](const auto& test_info) {
-                           return std::string(std::get<0>(test_info.param).label) +
-                                  (std::get<1>(test_info.param) == BackendKind::kSerial ? "_serial" : "_opencl");
-                         });
+                         test::case_and_backend_label<WholeFit>);
 
 //! The 15-degree Y's branches never part and are built as one tube, twice as
 //! wide at its end as the trunk's: 16 vertices around do not resolve the two

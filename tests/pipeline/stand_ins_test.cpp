@@ -76,10 +76,7 @@ TEST_P(StandIns, FitStaysValidAndMeetsTheBoundsThatHold) {
 
 INSTANTIATE_TEST_SUITE_P(Issue14, StandIns,
                          ::testing::Combine(::testing::ValuesIn(kStandIns), ::testing::ValuesIn(test::backend_kinds())),
-                         [](const auto& test_info) {
-                           return std::string(std::get<0>(test_info.param).label) +
-                                  (std::get<1>(test_info.param) == BackendKind::kSerial ? "_serial" : "_opencl");
-                         });
+                         test::case_and_backend_label<StandIn>);
 
 }  // namespace
 }  // namespace mcquad
