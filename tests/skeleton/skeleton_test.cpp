@@ -13,6 +13,19 @@ SkeletonData skeleton_of(std::vector<Eigen::Vector3d> nodes, std::vector<std::ar
   return SkeletonData{std::move(nodes), std::move(edges)};
 }
 
+//! Straight limbs from a node at the origin, one along each of `directions`
+//! (unit), `bones` bones of length 1 each.
+SkeletonGraph straight_limbs(const std::vector<Eigen::Vector3d>& directions, int bones, const std::string& name) {
+  std::vector<Eigen::Vector3d> nodes = {Eigen::Vector3d::Zero()};
+  std::vector<std::array<int, 2>> edges;
+  for (const Eigen::Vector3d& direction : directions)
+    for (int k = 1; k <= bones; ++k) {
+      nodes.push_back(direction * k);
+      edges.push_back({k == 1 ? 0 : int(nodes.size()) - 2, int(nodes.size()) - 1});
+    }
+  return build_skeleton_graph(skeleton_of(nodes, edges), name);
+}
+
 TEST(SkeletonGraph, ClassifiesNodesAndFindsBranchesAndLoops) {
   // A T (junction, three ends) plus a separate square loop.
   SkeletonData data = skeleton_of(
@@ -231,15 +244,7 @@ TEST(AcuteJunctions, AFanWhoseLimbsPartTogetherMovesAtOnce) {
 //! trunk's axis below the old one, its limbs parting widely.
 TEST(AcuteJunctions, BranchesFoldedBackOnEitherSideOfATrunkMoveWithIt) {
   const double s = std::sin(48.0 * M_PI / 180.0), c = std::cos(48.0 * M_PI / 180.0);
-  const std::vector<Eigen::Vector3d> directions = {{0, -1, 0}, {s, -c, 0}, {-s, -c, 0}, {0, 1, 0}};
-  std::vector<Eigen::Vector3d> nodes = {Eigen::Vector3d::Zero()};
-  std::vector<std::array<int, 2>> edges;
-  for (const Eigen::Vector3d& direction : directions)
-    for (int k = 1; k <= 5; ++k) {
-      nodes.push_back(direction * k);
-      edges.push_back({k == 1 ? 0 : int(nodes.size()) - 2, int(nodes.size()) - 1});
-    }
-  SkeletonGraph graph = build_skeleton_graph(skeleton_of(nodes, edges), "folded.obj");
+  SkeletonGraph graph = straight_limbs({{0, -1, 0}, {s, -c, 0}, {-s, -c, 0}, {0, 1, 0}}, 5, "folded.obj");
   BoneAssignment bones;
   bones.bone_radius.assign(graph.edges.size(), 0.6);
   TubeSkeleton spread = spread_acute_junctions(graph, bones, 75.0 * M_PI / 180.0, "folded.obj");
@@ -253,6 +258,42 @@ TEST(AcuteJunctions, BranchesFoldedBackOnEitherSideOfATrunkMoveWithIt) {
     EXPECT_LT(p.y(), -0.5);
     EXPECT_GT(smallest_angle_at(spread.graph, v), 60.0 * M_PI / 180.0);
   }
+}
+
+//! A fork whose stem would be shorter than kLeastStemInRadii times the
+//! pair's wider radius stays where the old node would still be a junction:
+//! the two blocks would overlap along the stem (random tree 30: a 46-degree
+//! pair of radii 0.98 and 0.48 at a junction of valence 6). A trunk and a
+//! limb square to it (radius 0.5) and two branches 40 degrees apart, all 8
+//! long: with branch radii 0.5 the fork rises 0.96, 1.92 radii, and moves
+//! (the old node keeps three bones); with 0.75 and 0.25 it rises the same,
+//! 1.28 times the fat branch's radius, and stays (clear of the other tubes
+//! either way). Where the old node would be left with two bones, no block
+//! stays there and the short fork moves: the Y without the square limb.
+TEST(AcuteJunctions, AForkTooNearAJunctionItLeavesStays) {
+  const double s = std::sin(20.0 * M_PI / 180.0), c = std::cos(20.0 * M_PI / 180.0);
+  auto spread_y = [&](bool fourth_limb, double fat, double thin) {
+    std::vector<Eigen::Vector3d> directions = {{0, -1, 0}, {s, c, 0}, {-s, c, 0}};
+    if (fourth_limb) directions.push_back({0, 0, -1});
+    SkeletonGraph graph = straight_limbs(directions, 8, "y.obj");
+    BoneAssignment bones;
+    for (const auto& bone : graph.edges) {
+      // The branches' bones lie on either side of x = 0, the others on it.
+      const double x = graph.positions[size_t(bone[0])].x() + graph.positions[size_t(bone[1])].x();
+      bones.bone_radius.push_back(x > 1e-9 ? fat : (x < -1e-9 ? thin : 0.5));
+    }
+    return spread_acute_junctions(graph, bones, 75.0 * M_PI / 180.0, "y.obj");
+  };
+  auto bones_at_origin = [](const TubeSkeleton& spread) {
+    for (size_t v = 0; v < spread.graph.node_count(); ++v)
+      if (spread.graph.positions[v].norm() < 1e-9) return spread.graph.degree(int(v));
+    return 0;
+  };
+  EXPECT_EQ(bones_at_origin(spread_y(true, 0.5, 0.5)), 3);
+  const TubeSkeleton kept = spread_y(true, 0.75, 0.25);
+  EXPECT_EQ(bones_at_origin(kept), 4);
+  EXPECT_EQ(junction_count(kept.graph), 1);
+  EXPECT_EQ(bones_at_origin(spread_y(false, 0.75, 0.25)), 2);
 }
 
 //! A moved fork sits between the bones it replaced, off each of their
