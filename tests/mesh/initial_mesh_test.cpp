@@ -285,9 +285,9 @@ TEST_P(RoughRandomTrees, HaveNoEdgeUnderAQuarterOfTheMedian) {
 
 //! Random tree 17 since forks too near a junction they leave stay
 //! (kLeastStemInRadii, skeleton/acute_junctions.h): its junction of valence
-//! 5 keeps two pairs 48 degrees apart on its block, and its shortest edges
-//! (0.076 of the median) lie 1.1 from the node, 24 degrees off the bone of
-//! one of their limbs, whose first bone is 0.76 long. Its fit is no worse
+//! 5 keeps two pairs 48 degrees apart on its block, and its shortest edge
+//! is 0.076 of the median: between successive swept rings of one of their
+//! limbs (first bone 0.76 long), about 1.1 from the node. Its fit is no worse
 //! for it (inward area 0.345 -> 0.116 %, docs/HARD_CASES.md, "Forks too
 //! near a junction they leave stay"); kept, disabled, to be run and looked
 //! at: mcquad_tests --gtest_also_run_disabled_tests --gtest_filter='*KnownShortEdge*'
