@@ -146,6 +146,14 @@ int junction_count(const SkeletonGraph& graph) {
   return junctions;
 }
 
+//! The node of `graph` at `p` (nodes keep their positions exactly when a
+//! skeleton is rebuilt), or -1.
+int node_at(const SkeletonGraph& graph, const Eigen::Vector3d& p) {
+  for (size_t v = 0; v < graph.node_count(); ++v)
+    if ((graph.positions[v] - p).norm() < 1e-9) return int(v);
+  return -1;
+}
+
 //! The smallest angle between two bones of `graph`'s node `v`, radians.
 double smallest_angle_at(const SkeletonGraph& graph, size_t v) {
   double smallest = M_PI;
@@ -178,10 +186,9 @@ TEST(AcuteJunctions, ForksAreNotMovedIntoAnotherArmsTube) {
       // The broom's fan moves up: no junction stays at its old node.
       for (size_t v = 0; v < graph.node_count(); ++v) {
         if (graph.kind(int(v)) != NodeKind::kJunction) continue;
-        for (size_t w = 0; w < spread.graph.node_count(); ++w) {
-          if ((spread.graph.positions[w] - graph.positions[v]).norm() < 1e-9) {
-            EXPECT_NE(spread.graph.kind(int(w)), NodeKind::kJunction) << "the broom's forks move up";
-          }
+        const int w = node_at(spread.graph, graph.positions[v]);
+        if (w >= 0) {
+          EXPECT_NE(spread.graph.kind(w), NodeKind::kJunction) << "the broom's forks move up";
         }
       }
       EXPECT_EQ(junction_count(spread.graph), junction_count(graph));
@@ -285,9 +292,8 @@ TEST(AcuteJunctions, AForkTooNearAJunctionItLeavesStays) {
     return spread_acute_junctions(graph, bones, 75.0 * M_PI / 180.0, "y.obj");
   };
   auto bones_at_origin = [](const TubeSkeleton& spread) {
-    for (size_t v = 0; v < spread.graph.node_count(); ++v)
-      if (spread.graph.positions[v].norm() < 1e-9) return spread.graph.degree(int(v));
-    return 0;
+    const int origin = node_at(spread.graph, Eigen::Vector3d::Zero());
+    return origin < 0 ? 0 : spread.graph.degree(origin);
   };
   EXPECT_EQ(bones_at_origin(spread_y(true, 0.5, 0.5)), 3);
   const TubeSkeleton kept = spread_y(true, 0.75, 0.25);
