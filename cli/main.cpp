@@ -137,8 +137,8 @@ struct FitCommand {
         ->capture_default_str();
     add_word_option(app, "--limb-ports", init.limb_ports, on_off_words(),
                     "robust mode: a limb over three times thinner than its junction block's face starts from a face "
-                    "of its own size inset in it (on, off; docs/HARD_CASES.md, \"Thin limbs get ports of their own "
-                    "size\")");
+                    "of its own size inset in it, at the trunk's wall (on, off; docs/HARD_CASES.md, \"Thin limbs "
+                    "start at their trunk's wall\")");
     app->add_option("--write-skeleton", options.construction_skeleton, "write the skeleton the mesh is built on (OBJ)");
     if (!evolution) {
       add_word_option(app, "--stage", init.stage, construction_stage_words(),

@@ -68,11 +68,6 @@ std::string node_name(const SkeletonGraph& graph, int node) {
 //! its bones fit one (kCubeFitDegrees), or the cube wherever it can be built.
 enum class BlockPreference { kFitted, kCube };
 
-//! A junction's bones sized by their first bone's radius, or by their
-//! limb's at its root (limb_root_radius): a thin branch's first bone
-//! measures its trunk.
-enum class LimbSizing { kFirstBone, kRoot };
-
 class MeshAssembler {
  public:
   MeshAssembler(const TubeSkeleton& skeleton, const PointCloud& cloud, const PointIndex<float>& cloud_index,
@@ -91,29 +86,8 @@ class MeshAssembler {
     bool preference_mattered = false;
     for (size_t node = 0; node < graph_.node_count(); ++node) {
       if (graph_.kind(int(node)) != NodeKind::kJunction) continue;
-      const QuadSoup::Size before = soup_.size();
-      Block block = add_block(int(node), closed, preference, LimbSizing::kFirstBone, preference_mattered);
-      if (options_.limb_ports && !closed && !limbs_to_inset(int(node), block).empty()) {
-        // A limb far thinner than its port (a thin branch off a trunk): the
-        // block is built again with its limbs' radii at their roots, which
-        // also lets it grow to the block fraction (the limb no longer looks
-        // as if it narrowed), and that block is kept only where a port is
-        // still too wide, and gets an inset. Rebuilt at every junction, the
-        // blocks moved where nothing was inset (the hand's fits turned twice
-        // the area; docs/HARD_CASES.md, "Seven changes tried and not kept",
-        // item 6).
-        soup_.truncate(before);
-        block = add_block(int(node), closed, preference, LimbSizing::kRoot, preference_mattered);
-        const std::vector<size_t> inset = limbs_to_inset(int(node), block);
-        if (inset.empty()) {
-          soup_.truncate(before);
-          block = add_block(int(node), closed, preference, LimbSizing::kFirstBone, preference_mattered);
-        }
-        inset_ports_ += int(inset.size());
-        for (size_t k : inset)
-          block.ports[k] = inset_port(soup_, block.ports[k], graph_.positions[node], block.bones.directions[k],
-                                      block.bones.tube_radii[k]);
-      }
+      Block block = add_block(int(node), closed, preference, preference_mattered);
+      if (options_.limb_ports && !closed) inset_thin_limbs(int(node), block);
       const auto& neighbours = graph_.neighbours[node];
       for (size_t k = 0; k < block.ports.size(); ++k) {
         ports_[{int(node), neighbours[k]}] = block.ports[k];
@@ -132,11 +106,11 @@ class MeshAssembler {
     std::vector<Port> ports;  //!< one per bone, in the node's neighbour order
   };
 
-  Block add_block(int node, bool closed, BlockPreference preference, LimbSizing sizing, bool& preference_mattered) {
+  Block add_block(int node, bool closed, BlockPreference preference, bool& preference_mattered) {
     const Eigen::Vector3d& center = graph_.positions[size_t(node)];
     Block block;
-    block.fraction = block_fraction(node, sizing);
-    block.bones = junction_bones(node, block.fraction, sizing);
+    block.fraction = block_fraction(node);
+    block.bones = junction_bones(node, block.fraction);
     block.size = block_size(block.bones);
     const JunctionBones& bones = block.bones;
     // Where the bones fit a cube's faces (every bone near its own face's
@@ -174,19 +148,52 @@ class MeshAssembler {
 
   //! The bones of `block` whose port is more than kInsetPortRatio times as
   //! wide as their limb's root (limb_root_radius, at the block's fraction),
-  //! and that leave their port within kInsetLeastCosine of its normal: the
-  //! inset lies in the port's plane, and a tube that bends from it at once
-  //! folded (a branch at 45 degrees to its trunk, 43 degrees off its port's
-  //! normal: a plug at its root, docs/HARD_CASES.md, "Thin limbs get ports of
-  //! their own size").
+  //! that leave their port within kInsetLeastCosine of its normal, and whose
+  //! inset stands out of the port no further than kInsetLongestLift port
+  //! radii (inset_lift): a limb that runs on inside its trunk that far is
+  //! not a branch out of the trunk's wall (a thin branch at 20 or 30 degrees,
+  //! its fork moved out along the trunk: lifted 1.8 to 2.5 port radii, the
+  //! fit's mean 0.5 -> 9.7 % r; docs/HARD_CASES.md, "Thin limbs start at
+  //! their trunk's wall").
   std::vector<size_t> limbs_to_inset(int node, const Block& block) const {
     std::vector<size_t> inset;
     const auto& neighbours = graph_.neighbours[size_t(node)];
-    for (size_t k = 0; k < block.ports.size(); ++k)
-      if (block.bones.directions[k].dot(block.ports[k].outward) >= kInsetLeastCosine &&
-          block.ports[k].radius > kInsetPortRatio * block.fraction * limb_root_radius(node, neighbours[k]))
+    for (size_t k = 0; k < block.ports.size(); ++k) {
+      const Port& port = block.ports[k];
+      if (block.bones.directions[k].dot(port.outward) >= kInsetLeastCosine &&
+          port.radius > kInsetPortRatio * block.fraction * limb_root_radius(node, neighbours[k]) &&
+          inset_lift(node, neighbours[k], port) <= kInsetLongestLift * port.radius)
         inset.push_back(k);
+    }
     return inset;
+  }
+
+  //! How far out of `port`'s plane the inset of the limb from `node`
+  //! through `next` stands: to kInsetLift of the way along the limb to where
+  //! it leaves the junction's other tubes (limb_exit), the trunk's wall;
+  //! never into the block.
+  double inset_lift(int node, int next, const Port& port) const {
+    const std::vector<Eigen::Vector3d> line = chain_line(node, next);
+    const Eigen::Vector3d root = point_at(line, kInsetLift * limb_exit(node, next, line)).first;
+    return std::max(0.0, (root - port.center).dot(port.outward));
+  }
+
+  //! Gives each limb of `block` far thinner than its port (limbs_to_inset) a
+  //! port of its own size at its root (limb_root_radius), inset in that port
+  //! (inset_port) and lifted out of the port's plane to the trunk's wall
+  //! (inset_lift), where the limb's tube then starts. In the port's plane,
+  //! at the start fraction, the inset lay inside the trunk and the thin
+  //! branch's fit got worse; growing the whole block to the wall instead
+  //! moved its other ports too and cost the armadillo's torso its coverage
+  //! (docs/HARD_CASES.md, "Thin limbs start at their trunk's wall").
+  void inset_thin_limbs(int node, Block& block) {
+    const auto& neighbours = graph_.neighbours[size_t(node)];
+    for (size_t k : limbs_to_inset(node, block)) {
+      Port& port = block.ports[k];
+      port = inset_port(soup_, port, graph_.positions[size_t(node)], block.bones.directions[k],
+                        block.fraction * limb_root_radius(node, neighbours[k]), inset_lift(node, neighbours[k], port));
+      ++inset_ports_;
+    }
   }
 
   void build_chains() {
@@ -217,14 +224,12 @@ class MeshAssembler {
   }
 
   //! The directions of a junction's bones and their tubes' radii at
-  //! `fraction`: each bone's own, or with LimbSizing::kRoot its limb's at
-  //! its root (limb_root_radius).
-  JunctionBones junction_bones(int node, double fraction, LimbSizing sizing = LimbSizing::kFirstBone) const {
+  //! `fraction`.
+  JunctionBones junction_bones(int node, double fraction) const {
     JunctionBones bones;
     for (int next : graph_.neighbours[size_t(node)]) {
       bones.directions.push_back((graph_.positions[size_t(next)] - graph_.positions[size_t(node)]).normalized());
-      bones.tube_radii.push_back(sizing == LimbSizing::kRoot ? fraction * limb_root_radius(node, next)
-                                                             : tube_radius(node, next, fraction));
+      bones.tube_radii.push_back(tube_radius(node, next, fraction));
     }
     return bones;
   }
@@ -242,8 +247,7 @@ class MeshAssembler {
   double limb_root_radius(int node, int next) const {
     const std::vector<double> radii = chain_radii(node, next);
     if (limb_radius(radii) == radii.front()) return radii.front();
-    std::vector<Eigen::Vector3d> line;
-    for (int c : graph_.chain_from(node, next)) line.push_back(graph_.positions[size_t(c)]);
+    const std::vector<Eigen::Vector3d> line = chain_line(node, next);
     const double root = root_of_limb(node, next, line);
     if (root <= 0) return radii.front();
     const auto [at, tangent] = point_at(line, root);
@@ -257,15 +261,28 @@ class MeshAssembler {
     return std::min(distance[kRing / 2], radii.front());
   }
 
+  //! The chain from junction `node` through `next`, as points.
+  std::vector<Eigen::Vector3d> chain_line(int node, int next) const {
+    std::vector<Eigen::Vector3d> line;
+    for (int c : graph_.chain_from(node, next)) line.push_back(graph_.positions[size_t(c)]);
+    return line;
+  }
+
   //! Arc length along `line` (the chain from `node` through `next`) a tenth
-  //! past where it leaves the tubes of the node's other bones
-  //! (inside_another_tube); 0 if it never does. Not a fixed distance: a
-  //! branch at 45 degrees to a trunk leaves it 1.41 trunk radii out, at 90
-  //! degrees 1.
+  //! past where it leaves the tubes of the node's other bones (limb_exit); 0
+  //! if it never does.
   double root_of_limb(int node, int next, const std::vector<Eigen::Vector3d>& line) const {
+    return std::min(1.1 * limb_exit(node, next, line), polyline_length(line));
+  }
+
+  //! Arc length along `line` (the chain from `node` through `next`) where it
+  //! leaves the tubes of the node's other bones (inside_another_tube); 0 if
+  //! it never does. Not a fixed distance: a branch at 45 degrees to a trunk
+  //! leaves it 1.41 trunk radii out, at 90 degrees 1.
+  double limb_exit(int node, int next, const std::vector<Eigen::Vector3d>& line) const {
     const double length = polyline_length(line), step = 0.05 * tube_radius(node, next, 1.0);
     for (double s = step; s <= length; s += step)
-      if (!inside_another_tube(node, next, point_at(line, s).first)) return std::min(1.1 * s, length);
+      if (!inside_another_tube(node, next, point_at(line, s).first)) return s;
     return 0;
   }
 
@@ -307,10 +324,10 @@ class MeshAssembler {
   //! less than kLeastLimbNarrowing of its first bone's radius (a thin branch
   //! off a trunk, whose first bone takes the trunk's radius: its port stood
   //! out of the trunk's wall). The start fraction there.
-  double block_fraction(int node, LimbSizing sizing = LimbSizing::kFirstBone) const {
+  double block_fraction(int node) const {
     const double grown = std::max(options_.block_fraction, options_.start_fraction);
     if (grown == options_.start_fraction) return grown;
-    const JunctionBones bones = junction_bones(node, grown, sizing);
+    const JunctionBones bones = junction_bones(node, grown);
     const double size = block_size(bones);
     const auto& neighbours = graph_.neighbours[size_t(node)];
     for (size_t k = 0; k < neighbours.size(); ++k) {

@@ -33,12 +33,10 @@ struct InitialMeshOptions {
   BlockEdges block_edges = BlockEdges::kAcuteToCrotch;
   //! A limb whose port is over kInsetPortRatio times as wide as its root
   //! (a thin branch off a trunk, whose first bone measured the trunk) gets a
-  //! port of its own size inset in it (mesh/inset_port.h), on a block built
-  //! with its limbs' radii at their roots. Off by default: on the armadillo
-  //! scan it insets the tail and leaves more of the torso uncovered
-  //! (docs/HARD_CASES.md, "Thin limbs get ports of their own size"); off in
-  //! the paper's mode.
-  bool limb_ports = false;
+  //! port of its own size inset in it and lifted out of it to the trunk's
+  //! wall (mesh/inset_port.h; docs/HARD_CASES.md, "Thin limbs start at their
+  //! trunk's wall"). Off in the paper's mode and on the unrefined mesh.
+  bool limb_ports = true;
   EndMode ends = EndMode::kAuto;  //!< open/capped ends; auto decides from the cloud
   double resolution = 0;          //!< target edge length; 0 = auto (16 vertices around a tube)
   size_t target_vertices = 0;     //!< alternatively, refine until at least this many vertices

@@ -19,10 +19,12 @@ Eigen::Vector3d inset_center(const Port& port, const Eigen::Vector3d& node, cons
 }  // namespace
 
 Port inset_port(QuadSoup& soup, const Port& port, const Eigen::Vector3d& node, const Eigen::Vector3d& direction,
-                double radius) {
+                double radius, double lift) {
   const Eigen::Vector3d& normal = port.outward;
+  Port lifted = port;
+  lifted.center += lift * normal;
   Port inner;
-  inner.center = inset_center(port, node, direction);
+  inner.center = inset_center(lifted, node, direction);
   inner.outward = normal;
   inner.radius = radius;
   // Each inner vertex toward its outer one, in the port's plane, so the

@@ -189,7 +189,7 @@ def fit(
     target_vertices: int = 0,
     min_junction_angle: float = 75.0,
     junction_inflation: float = 0.85,
-    limb_ports: bool = False,
+    limb_ports: bool = True,
     write_skeleton: str = "",
     backend: str = "auto",
     device: str = "",
@@ -249,8 +249,8 @@ def fit(
         junction_inflation: robust mode: the mesh round each junction moves this fraction of the way to the
             cloud along rays from its node before the evolution (0 to 0.95; 0: off).
         limb_ports: robust mode: a limb whose junction face is over three times as wide as the limb at its root
-            (a thin branch off a trunk) starts from a face of its own size inset in that face (off by default:
-            it costs the armadillo scan coverage; docs/HARD_CASES.md).
+            (a thin branch off a trunk) starts from a face of its own size inset in that face and lifted out of
+            it to the trunk's wall (docs/HARD_CASES.md, "Thin limbs start at their trunk's wall").
         write_skeleton: write the skeleton the mesh is built on here (OBJ).
         backend: ``auto`` (OpenCL if a device exists), ``serial`` or ``opencl``.
         device: OpenCL device index or name (default: ``$MCQUAD_DEVICE``, else the first GPU, else the first device).

@@ -457,25 +457,27 @@ TEST(InitialMesh, StagesStopEarly) {
   EXPECT_EQ(refined.mesh.n_faces(), extruded.mesh.n_faces() << (2 * refined.refinement_levels));
 }
 
-//! `--limb-ports on` (mesh/inset_port.h): the thin branch at 60 degrees, a
-//! fifth of its trunk's radius, starts from a port of its own size inset in
-//! its block's face; at 45 degrees the bone leaves its face 43 degrees off
-//! the face's normal and gets no inset (it folded into a plug there); a
+//! Limb ports (mesh/inset_port.h, on by default): the thin branch at 60
+//! and at 45 degrees, a fifth of its trunk's radius, starts from a port of
+//! its own size inset in its block's face and lifted to the trunk's wall; at
+//! 30 degrees its fork moves out along the trunk, the limb runs on inside
+//! the trunk past its port (a lift of 2.5 port radii) and gets none; a
 //! branch half the trunk's radius gets none either. The meshes stay all
 //! quads, 2-manifold, with the topology they had, and the inset's vertices
 //! are regular.
-TEST(LimbPorts, InsetOnlyAThinLimbLeavingItsFaceNearItsNormal) {
+TEST(LimbPorts, InsetOnlyAThinLimbLeavingItsTrunksWallNearItsPort) {
   struct Case {
     double angle, radius;
     int inset;
   };
-  for (const Case& c : {Case{60, 0.2, 1}, Case{45, 0.2, 0}, Case{60, 0.5, 0}}) {
+  for (const Case& c : {Case{60, 0.2, 1}, Case{45, 0.2, 1}, Case{30, 0.2, 0}, Case{60, 0.5, 0}}) {
     ShapeOptions shape_options;
     shape_options.angle_degrees = c.angle;
     shape_options.branch_radius = c.radius;
     const test::ShapeWithBones t("thin-branch", 40000, shape_options);
     InitialMeshOptions options;
     options.stage = ConstructionStage::kExtruded;
+    options.limb_ports = false;
     InitialMesh without = build_initial_mesh(t.graph, t.bones, t.shape.cloud, options, "thin-branch");
     options.limb_ports = true;
     InitialMesh with = build_initial_mesh(t.graph, t.bones, t.shape.cloud, options, "thin-branch");

@@ -66,5 +66,28 @@ TEST(InsetPort, StaysWithinHalfThePortsRadiusOfItsCentre) {
   EXPECT_NEAR((off.center - Eigen::Vector3d(0.5, 0, 0)).norm(), 0, 1e-12);
 }
 
+TEST(InsetPort, LiftedStandsOutOfThePortWhereItsBoneCrossesTheLiftedPlane) {
+  RoundPort r;
+  // The bone of the first test; lifted by 0.4, it crosses z = 0.4 at (0.5, 0, 0.4).
+  const Eigen::Vector3d node(0.3 - 0.5, 0, -1), direction = Eigen::Vector3d(0.5, 0, 1).normalized();
+  Port inner = inset_port(r.soup, r.port, node, direction, 0.25, 0.4);
+  EXPECT_NEAR((inner.center - Eigen::Vector3d(0.5, 0, 0.4)).norm(), 0, 1e-12);
+  EXPECT_EQ(inner.outward, r.port.outward);
+  for (size_t k = 0; k < 8; ++k) {
+    const Eigen::Vector3d p = r.at(inner.ring[k]);
+    EXPECT_NEAR((p - inner.center).norm(), 0.25, 1e-12) << k;
+    EXPECT_NEAR(p.z(), 0.4, 1e-12) << "in the lifted plane";
+  }
+  // The band is a frustum narrowing outward: every quad still faces out of
+  // the block, up and away from the axis.
+  for (const auto& q : r.soup.quads) {
+    const Eigen::Vector3d n = quad_normal(r.soup, q);
+    Eigen::Vector3d mid = Eigen::Vector3d::Zero();
+    for (int id : q) mid += r.at(id) / 4;
+    EXPECT_GT(n.z(), 0);
+    EXPECT_GT(n.dot(mid - Eigen::Vector3d(0, 0, mid.z())), 0);
+  }
+}
+
 }  // namespace
 }  // namespace mcquad

@@ -103,21 +103,21 @@ TEST_P(SparseCloud, AThinTubeIsNotDentedWhereItsPointsLeaveGaps) {
 INSTANTIATE_TEST_SUITE_P(Issue20, SparseCloud, ::testing::ValuesIn(test::backend_kinds()), test::backend_label);
 
 //! A branch of a fifth (and a quarter) of its trunk's radius, leaving it at
-//! 60 degrees. Its first bone measures the trunk, so its block's face was as
-//! wide as the trunk's and, the junction kept at the start fraction, lay
-//! inside it; the branch's tube narrowed from that face in one ring, a
-//! funnel whose upper half faced up the trunk's inside and stayed a pocket
-//! (without limb ports, mean / p95 1.11 / 3.32 and 1.08 / 4.13 % r, the
-//! quarter's inward area 0.30 %; with the reach for the uncovered cloud the
-//! fifth's are 1.09 / 3.27 % r, and 0.98 / 2.99 on OpenCL, at the bounds). With `--limb-ports on` the block is built
-//! with the branch's radius at its root, measured in the cloud, and a port
-//! of that size is inset in its face (mesh/inset_port.h): the fit meets
-//! every bound of issue 20 on both backends.
-class ThinBranch : public ::testing::TestWithParam<std::tuple<BackendKind, double>> {};
+//! 60 degrees, and a fifth at 45. Its first bone measures the trunk, so its
+//! block's face is as wide as the trunk's and, the junction kept at the
+//! start fraction, lies inside it; the branch's tube narrowed from that face
+//! in one ring, a funnel whose upper half faced up the trunk's inside and
+//! stayed a pocket (without limb ports, mean / p95 1.07 / 3.13, 1.15 / 3.96
+//! and 1.91 / 3.90 % r). With limb ports (the default) a port of the branch's
+//! size is inset in that face and lifted to the trunk's wall
+//! (mesh/inset_port.h): the fit meets every bound of issue 20 on both
+//! backends. In the face's plane the inset made the fifth at 60 degrees
+//! worse (1.37 / 5.55 % r) and folded the one at 45 into a plug.
+class ThinBranch : public ::testing::TestWithParam<std::tuple<BackendKind, std::tuple<double, double>>> {};
 
 TEST_P(ThinBranch, MeetsEveryBoundOfTheFitWithLimbPorts) {
   ShapeOptions shape_options;
-  shape_options.branch_radius = std::get<1>(GetParam());
+  std::tie(shape_options.branch_radius, shape_options.angle_degrees) = std::get<1>(GetParam());
   GeneratedShape shape = test::small_shape("thin-branch", 40000, shape_options);
   double p95_without = 0;
   for (bool limb_ports : {false, true}) {
@@ -141,12 +141,38 @@ TEST_P(ThinBranch, MeetsEveryBoundOfTheFitWithLimbPorts) {
   }
 }
 
+//! Kept while it fails (docs/HARD_CASES.md, "Thin limbs start at their
+//! trunk's wall"): a branch at 50 degrees, 0.3 of its trunk's radius (no
+//! port inset: its face is under three times as wide). The general block
+//! gives it a face whose normal points 30-40 degrees below its bone; the
+//! tube leaves along that normal, bends up to its bone, and its lower side
+//! swings out of the cloud: mean / p95 6.2 / 36.5 % r, a bulge 0.6 outside
+//! the true surface below the branch's root.
+TEST(KnownHardThinBranch, DISABLED_At50DegreesMeetsEveryBoundOfTheFit) {
+  ShapeOptions shape_options;
+  shape_options.branch_radius = 0.3;
+  shape_options.angle_degrees = 50;
+  GeneratedShape shape = test::small_shape("thin-branch", 40000, shape_options);
+  FitOptions options;
+  options.backend = BackendKind::kSerial;
+  FitResult fit = run_fit(FitInput{shape.cloud, shape.skeleton}, options);
+  TrueSurfaceDistance truth = measure_true_surface_distance(fit.mesh, shape.surface);
+  EXPECT_LE(truth.inward_area_fraction, 0.001);
+  EXPECT_LE(truth.relative.mean, 0.01);
+  EXPECT_LE(truth.relative.p95, 0.03);
+}
+
 INSTANTIATE_TEST_SUITE_P(Issue20, ThinBranch,
-                         ::testing::Combine(::testing::ValuesIn(test::backend_kinds()), ::testing::Values(0.2, 0.25)),
+                         ::testing::Combine(::testing::ValuesIn(test::backend_kinds()),
+                                            ::testing::Values(std::make_tuple(0.2, 60.0), std::make_tuple(0.25, 60.0),
+                                                              std::make_tuple(0.2, 45.0))),
                          [](const auto& test_info) {
-                           return std::string(std::get<0>(test_info.param) == BackendKind::kSerial ? "Serial"
-                                                                                                   : "OpenCL") +
-                                  "_radius" + std::to_string(int(std::lround(100 * std::get<1>(test_info.param))));
+                           const BackendKind backend = std::get<0>(test_info.param);
+                           const double radius = std::get<0>(std::get<1>(test_info.param));
+                           const double angle = std::get<1>(std::get<1>(test_info.param));
+                           return std::string(backend == BackendKind::kSerial ? "Serial" : "OpenCL") + "_radius" +
+                                  std::to_string(int(std::lround(100 * radius))) + "_at" +
+                                  std::to_string(int(std::lround(angle)));
                          });
 
 //! The paper's mode keeps the paper's single evolution at any resolution.
