@@ -136,7 +136,7 @@ struct FitCommand {
         ->check(range("junction_inflation"))
         ->capture_default_str();
     add_word_option(app, "--limb-ports", init.limb_ports, on_off_words(),
-                    "robust mode: a limb over three times thinner than its junction block's face starts from a face "
+                    "robust mode: a limb over 2.5 times thinner than its junction block's face starts from a face "
                     "of its own size inset in it, at the trunk's wall (on, off; docs/HARD_CASES.md, \"Thin limbs "
                     "start at their trunk's wall\")");
     app->add_option("--write-skeleton", options.construction_skeleton, "write the skeleton the mesh is built on (OBJ)");

@@ -248,7 +248,7 @@ def fit(
             acutely move to where the cloud's tubes part (0: never).
         junction_inflation: robust mode: the mesh round each junction moves this fraction of the way to the
             cloud along rays from its node before the evolution (0 to 0.95; 0: off).
-        limb_ports: robust mode: a limb whose junction face is over three times as wide as the limb at its root
+        limb_ports: robust mode: a limb whose junction face is over 2.5 times as wide as the limb at its root
             (a thin branch off a trunk) starts from a face of its own size inset in that face and lifted out of
             it to the trunk's wall (docs/HARD_CASES.md, "Thin limbs start at their trunk's wall").
         write_skeleton: write the skeleton the mesh is built on here (OBJ).

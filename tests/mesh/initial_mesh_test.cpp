@@ -458,19 +458,21 @@ TEST(InitialMesh, StagesStopEarly) {
 }
 
 //! Limb ports (mesh/inset_port.h, on by default): the thin branch at 60
-//! and at 45 degrees, a fifth of its trunk's radius, starts from a port of
-//! its own size inset in its block's face and lifted to the trunk's wall; at
-//! 30 degrees its fork moves out along the trunk, the limb runs on inside
-//! the trunk past its port (a lift of 2.5 port radii) and gets none; a
-//! branch half the trunk's radius gets none either. The meshes stay all
-//! quads, 2-manifold, with the topology they had, and the inset's vertices
-//! are regular.
+//! and at 45 degrees, a fifth of its trunk's radius, and at 50 degrees,
+//! 0.3 of it, start from a port of their own size inset in their block's
+//! face and lifted to the trunk's wall. At 30 degrees (0.2) and at 35 (0.3)
+//! the fork moves out along the trunk, the limb runs on inside the trunk
+//! past its port (lifts of 2.5 and 1.5 port radii) and gets none; a branch
+//! half the trunk's radius gets none either. The meshes stay all quads,
+//! 2-manifold, with the topology they had, and the inset's vertices are
+//! regular.
 TEST(LimbPorts, InsetOnlyAThinLimbLeavingItsTrunksWallNearItsPort) {
   struct Case {
     double angle, radius;
     int inset;
   };
-  for (const Case& c : {Case{60, 0.2, 1}, Case{45, 0.2, 1}, Case{30, 0.2, 0}, Case{60, 0.5, 0}}) {
+  for (const Case& c :
+       {Case{60, 0.2, 1}, Case{45, 0.2, 1}, Case{50, 0.3, 1}, Case{30, 0.2, 0}, Case{35, 0.3, 0}, Case{60, 0.5, 0}}) {
     ShapeOptions shape_options;
     shape_options.angle_degrees = c.angle;
     shape_options.branch_radius = c.radius;
