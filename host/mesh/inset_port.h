@@ -42,8 +42,10 @@ constexpr double kInsetLift = 0.9;
 //! along `direction` (unit) crosses the port's plane, joined to the port's
 //! ring by 8 quads; returns it as the port the limb's tube attaches to.
 //! `lift` moves the ring that far out of the port's plane along its normal
-//! (the bone's crossing then taken in the lifted plane): the 8 quads are a
-//! band in the plane without it, a frustum with it.
+//! (the bone's crossing then taken in the lifted plane) and, where it stays
+//! clear of that plane, turns the ring across the bone (its outward the
+//! bone's direction): the 8 quads are a band in the plane without it, a
+//! frustum with it.
 //!
 //! A block's face is as large as its neighbours let it be: a thin limb off a
 //! trunk gets a face as wide as the trunk's, and its tube narrowed from that

@@ -66,17 +66,20 @@ TEST(InsetPort, StaysWithinHalfThePortsRadiusOfItsCentre) {
   EXPECT_NEAR((off.center - Eigen::Vector3d(0.5, 0, 0)).norm(), 0, 1e-12);
 }
 
-TEST(InsetPort, LiftedStandsOutOfThePortWhereItsBoneCrossesTheLiftedPlane) {
+TEST(InsetPort, LiftedStandsOutOfThePortAcrossItsBone) {
   RoundPort r;
   // The bone of the first test; lifted by 0.4, it crosses z = 0.4 at (0.5, 0, 0.4).
   const Eigen::Vector3d node(0.3 - 0.5, 0, -1), direction = Eigen::Vector3d(0.5, 0, 1).normalized();
   Port inner = inset_port(r.soup, r.port, node, direction, 0.25, 0.4);
   EXPECT_NEAR((inner.center - Eigen::Vector3d(0.5, 0, 0.4)).norm(), 0, 1e-12);
-  EXPECT_EQ(inner.outward, r.port.outward);
+  EXPECT_NEAR((inner.outward - direction).norm(), 0, 1e-12) << "the ring faces along its bone";
   for (size_t k = 0; k < 8; ++k) {
     const Eigen::Vector3d p = r.at(inner.ring[k]);
     EXPECT_NEAR((p - inner.center).norm(), 0.25, 1e-12) << k;
-    EXPECT_NEAR(p.z(), 0.4, 1e-12) << "in the lifted plane";
+    EXPECT_NEAR((p - inner.center).dot(direction), 0, 1e-12) << "across the bone";
+    EXPECT_GT(p.z(), 0.2) << "clear of the port's plane";
+    // In the port's order: each inner vertex toward its outer one.
+    EXPECT_GT((p - inner.center).dot(r.at(r.port.ring[k])), 0) << k;
   }
   // The band is a frustum narrowing outward: every quad still faces out of
   // the block, up and away from the axis.
@@ -87,6 +90,16 @@ TEST(InsetPort, LiftedStandsOutOfThePortWhereItsBoneCrossesTheLiftedPlane) {
     EXPECT_GT(n.z(), 0);
     EXPECT_GT(n.dot(mid - Eigen::Vector3d(0, 0, mid.z())), 0);
   }
+}
+
+TEST(InsetPort, LiftedTooLittleToTurnStaysInALiftedPlane) {
+  RoundPort r;
+  // Tilted across the bone, the ring would dip 0.11 below its centre: more
+  // than half a lift of 0.1, so it stays parallel to the port, at z = 0.1.
+  const Eigen::Vector3d node(0.3 - 0.5, 0, -1), direction = Eigen::Vector3d(0.5, 0, 1).normalized();
+  Port inner = inset_port(r.soup, r.port, node, direction, 0.25, 0.1);
+  EXPECT_EQ(inner.outward, r.port.outward);
+  for (size_t k = 0; k < 8; ++k) EXPECT_NEAR(r.at(inner.ring[k]).z(), 0.1, 1e-12) << k;
 }
 
 }  // namespace
