@@ -19,7 +19,8 @@ constexpr double kInsetPortRatio = 2.5;
 //! off the port's normal gets no inset (limbs_to_inset). The thin branch at
 //! 45 degrees to its trunk leaves its port 43 degrees off: in the port's
 //! plane its inset folded into a plug (mean / p95 1.91 / 3.90 -> 4.67 / 38.1
-//! % r), lifted to the trunk's wall it meets every bound (0.59 / 1.69).
+//! % r), lifted to the trunk's wall it meets every bound (0.59 / 1.69; 0.53
+//! / 1.84 turned across the bone).
 constexpr double kInsetLeastCosine = 0.5;
 
 //! A limb whose inset would stand further than this many port radii out of
