@@ -34,9 +34,10 @@ constexpr double kInsetLongestLift = 1.2;
 //! The inset ring stands out of its port's plane to this fraction of the way
 //! along its limb to where the limb leaves the junction's other tubes (the
 //! trunk's wall). The generated thin branch (a fifth of its trunk, at 60
-//! degrees) met every bound of issue 20 from 0.7 to 1.1 (mean / p95 0.74 /
-//! 1.71, 0.35 / 1.50, 0.40 / 1.65, 0.43 / 1.67 % r at 0.7, 0.9, 1.0, 1.1;
-//! docs/HARD_CASES.md, "Thin limbs start at their trunk's wall").
+//! degrees, the ring in the face's plane) met every bound of issue 20 from
+//! 0.7 to 1.1 (mean / p95 0.74 / 1.71, 0.35 / 1.50, 0.40 / 1.65, 0.43 /
+//! 1.67 % r at 0.7, 0.9, 1.0, 1.1; docs/HARD_CASES.md, "Thin limbs start at
+//! their trunk's wall").
 constexpr double kInsetLift = 0.9;
 
 //! A ring of `radius` inside `port`, centred where the bone leaving `node`
