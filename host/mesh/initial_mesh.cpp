@@ -155,15 +155,21 @@ class MeshAssembler {
   //! its fork moved out along the trunk: lifted 1.8 to 2.5 port radii, the
   //! fit's mean 0.5 -> 9.7 % r; docs/HARD_CASES.md, "Thin limbs start at
   //! their trunk's wall").
-  std::vector<size_t> limbs_to_inset(int node, const Block& block) const {
-    std::vector<size_t> inset;
+  struct LimbInset {
+    size_t bone = 0;    //!< in the node's neighbour order
+    double radius = 0;  //!< the limb's root radius, at the block's fraction
+    double lift = 0;    //!< out of the port's plane (inset_lift)
+  };
+  std::vector<LimbInset> limbs_to_inset(int node, const Block& block) const {
+    std::vector<LimbInset> inset;
     const auto& neighbours = graph_.neighbours[size_t(node)];
     for (size_t k = 0; k < block.ports.size(); ++k) {
       const Port& port = block.ports[k];
-      if (block.bones.directions[k].dot(port.outward) >= kInsetLeastCosine &&
-          port.radius > kInsetPortRatio * block.fraction * limb_root_radius(node, neighbours[k]) &&
-          inset_lift(node, neighbours[k], port) <= kInsetLongestLift * port.radius)
-        inset.push_back(k);
+      if (block.bones.directions[k].dot(port.outward) < kInsetLeastCosine) continue;
+      const double root = limb_root_radius(node, neighbours[k]);
+      if (port.radius <= kInsetPortRatio * block.fraction * root) continue;
+      const double lift = inset_lift(node, neighbours[k], port);
+      if (lift <= kInsetLongestLift * port.radius) inset.push_back({k, block.fraction * root, lift});
     }
     return inset;
   }
@@ -187,11 +193,10 @@ class MeshAssembler {
   //! moved its other ports too and cost the armadillo's torso its coverage
   //! (docs/HARD_CASES.md, "Thin limbs start at their trunk's wall").
   void inset_thin_limbs(int node, Block& block) {
-    const auto& neighbours = graph_.neighbours[size_t(node)];
-    for (size_t k : limbs_to_inset(node, block)) {
-      Port& port = block.ports[k];
-      port = inset_port(soup_, port, graph_.positions[size_t(node)], block.bones.directions[k],
-                        block.fraction * limb_root_radius(node, neighbours[k]), inset_lift(node, neighbours[k], port));
+    for (const LimbInset& limb : limbs_to_inset(node, block)) {
+      Port& port = block.ports[limb.bone];
+      port = inset_port(soup_, port, graph_.positions[size_t(node)], block.bones.directions[limb.bone], limb.radius,
+                        limb.lift);
       ++inset_ports_;
     }
   }
