@@ -4,6 +4,7 @@
 #include <cmath>
 #include <Eigen/Geometry>
 #include <set>
+#include <tuple>
 
 #include "core/quantile.h"
 
@@ -393,7 +394,7 @@ std::vector<double> node_radii(const SkeletonGraph& graph, const std::vector<dou
 TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssignment& bones, double min_angle,
                                     const std::string& source) {
   TubeSkeleton result{graph, bones.bone_radius, {}};
-  std::set<std::pair<long, long>> kept;  // pairs too short to spread
+  std::set<std::tuple<int, int, int>> kept;  // (node, bone, bone): pairs too short to spread
   // Junctions this made are not moved again: their fork is as wide as the
   // crotch allows, and moving them on would only creep into the crotch.
   // The bones at them are widened once every move is done (widen_lobes).
@@ -413,7 +414,7 @@ TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssign
       const auto& n = g.neighbours[v];
       for (size_t i = 0; i < n.size(); ++i) {
         for (size_t j = i + 1; j < n.size(); ++j) {
-          if (kept.count({long(v) * 100000 + n[i], n[j]})) continue;
+          if (kept.count({int(v), n[i], n[j]})) continue;
           Eigen::Vector3d di = (g.positions[n[i]] - g.positions[v]).normalized();
           Eigen::Vector3d dj = (g.positions[n[j]] - g.positions[v]).normalized();
           double angle = std::acos(std::clamp(di.dot(dj), -1.0, 1.0));
@@ -435,7 +436,7 @@ TubeSkeleton spread_acute_junctions(const SkeletonGraph& graph, const BoneAssign
     double crotch = r / std::sin(best_angle / 2);          // along the bisector
     double along = crotch / std::cos(best_angle / 2) + r;  // along each bone, past the crotch
     double rise = std::max(crotch - r, 0.25 * crotch);     // the fork's distance up the bisector
-    auto keep_pair = [&] { kept.insert({long(best_node) * 100000 + best_i, best_j}); };
+    auto keep_pair = [&] { kept.insert({best_node, best_i, best_j}); };
     // A move of `limbs` limbs that leaves the old node a junction (a block
     // of its own) needs a stem of kLeastStemInRadii.
     auto stem_too_short = [&](size_t limbs) {
