@@ -230,9 +230,7 @@ ShapeOptions tree(uint64_t seed) {
 //! issue 20's fit on both backends.
 class WholeFits : public ::testing::TestWithParam<std::tuple<WholeFit, BackendKind>> {};
 
-TEST_P(WholeFits, MeetEveryBoundOfTheFit) {
-  const auto& [c, kind] = GetParam();
-  REQUIRE_BACKEND(device_found, kind);
+void expect_every_bound_of_the_fit(const WholeFit& c, BackendKind kind) {
   const GeneratedShape shape = test::small_shape(c.shape, c.points, c.options);
   FitOptions options;
   options.backend = kind;
@@ -244,6 +242,12 @@ TEST_P(WholeFits, MeetEveryBoundOfTheFit) {
   EXPECT_LE(truth.relative.p95, 0.03);
   EXPECT_LE(cloud_to_mesh_relative_to_local_radius(fit.mesh, shape.cloud, shape.surface).p95, 0.05);
   EXPECT_GE(measure_quad_shape(fit.mesh).min_scaled_jacobian, 0.2);
+}
+
+TEST_P(WholeFits, MeetEveryBoundOfTheFit) {
+  const auto& [c, kind] = GetParam();
+  REQUIRE_BACKEND(device_found, kind);
+  expect_every_bound_of_the_fit(c, kind);
 }
 
 const WholeFit kWholeFits[] = {
@@ -264,12 +268,41 @@ const WholeFit kWholeFits[] = {
     // mean 1.57 and 2.06 % of r); now the pair stays on the junction's block.
     {"random_tree_30", "random-tree", 30000, tree(30)},
     {"random_tree_33", "random-tree", 30000, tree(33)},
+    // Six fat limbs round a junction 24.7 degrees off a cube's faces: with
+    // the cube block, which it took until 2026-12-07, the fit kept two fat
+    // limbs' walls pressed together inside the body (inward area 0.41 %,
+    // mean 1.00 % of r); now only a junction within 10 degrees of a cube
+    // gets one (kCubeFitDegrees, mesh/initial_mesh.cpp).
+    {"random_tree_34", "random-tree", 30000, tree(34)},
 };
 
 INSTANTIATE_TEST_SUITE_P(Issue20, WholeFits,
                          ::testing::Combine(::testing::ValuesIn(kWholeFits),
                                             ::testing::ValuesIn(test::backend_kinds())),
                          test::case_and_backend_label<WholeFit>);
+
+//! Random trees whose fit still misses issue 20's bounds, kept so that they
+//! are run and looked at (serial; `--gtest_also_run_disabled_tests
+//! --gtest_filter='*KnownHardRandomTree*'`). Each turns its faces near a
+//! junction of five or six fat bones, where its initial mesh already turned
+//! faces against the true surface (docs/HARD_CASES.md, "Junctions of five
+//! and six bones take the cube only within 10 degrees"). As this test measures them on
+//! 2026-12-07: tree 29 turns 0.245 % of its area inward; tree 2 0.195 %, mean
+//! 1.14 % of r; tree 17 0.116 %, mean 1.34 % and p95 4.26 % of r.
+class KnownHardRandomTreeFits : public ::testing::TestWithParam<WholeFit> {};
+
+TEST_P(KnownHardRandomTreeFits, DISABLED_MeetEveryBoundOfTheFit) {
+  expect_every_bound_of_the_fit(GetParam(), BackendKind::kSerial);
+}
+
+const WholeFit kKnownHardTrees[] = {
+    {"random_tree_29", "random-tree", 30000, tree(29)},
+    {"random_tree_2", "random-tree", 30000, tree(2)},
+    {"random_tree_17", "random-tree", 30000, tree(17)},
+};
+
+INSTANTIATE_TEST_SUITE_P(Issue20, KnownHardRandomTreeFits, ::testing::ValuesIn(kKnownHardTrees),
+                         [](const auto& test_info) { return std::string(test_info.param.label); });
 
 //! The 15-degree Y's branches never part and are built as one tube, twice as
 //! wide at its end as the trunk's: 16 vertices around do not resolve the two
