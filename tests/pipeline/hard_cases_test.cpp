@@ -285,10 +285,10 @@ INSTANTIATE_TEST_SUITE_P(Issue20, WholeFits,
 //! are run and looked at (serial; `--gtest_also_run_disabled_tests
 //! --gtest_filter='*KnownHardRandomTree*'`). Each turns its faces near a
 //! junction of five or six fat bones, where its initial mesh already turned
-//! faces against the true surface (docs/HARD_CASES.md, "Junctions of five
-//! and six bones take the cube only within 10 degrees"). As this test measures them on
-//! 2026-12-07: tree 29 turns 0.245 % of its area inward; tree 2 0.195 %, mean
-//! 1.14 % of r; tree 17 0.116 %, mean 1.34 % and p95 4.26 % of r.
+//! faces against the true surface (docs/HARD_CASES.md, 2026-12-07, on
+//! junctions of five and six bones and the cube). As this test measures
+//! them on 2026-12-07: tree 29 turns 0.245 % of its area inward; tree 2
+//! 0.195 %, mean 1.14 % of r; tree 17 0.116 %, mean 1.34 % and p95 4.26 %.
 class KnownHardRandomTreeFits : public ::testing::TestWithParam<WholeFit> {};
 
 TEST_P(KnownHardRandomTreeFits, DISABLED_MeetEveryBoundOfTheFit) {
