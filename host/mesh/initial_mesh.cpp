@@ -56,8 +56,8 @@ constexpr double kLeastTiltedAdvance = 0.5;
 // tree 34's, 24.7 degrees off a cube, took the cube while this was 25 for
 // five bones on, and its initial mesh turned 0.65 % of its area against the
 // true surface, its fit 0.41 % (0.13 and 0.07 % with the general block;
-// docs/HARD_CASES.md, "Junctions of five and six bones take the cube only
-// within 10 degrees").
+// docs/HARD_CASES.md, 2026-12-07, on junctions of five and six bones and
+// the cube).
 constexpr double kCubeFitDegrees = 10.0;
 // A limb narrower than this, in its first bone's radius, where the blend
 // from a grown block ends, keeps its junction's block at the start fraction
